@@ -1,0 +1,43 @@
+#include <exception>
+#include <iostream>
+
+#include "command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"masonry: PRD limit analysis and rigid-block DEM of masonry structures, side by side"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Help for every subcommand");
+  masonry::Commands commands;
+#ifdef MASONRY_HAVE_PRD_CLI
+  masonry::add_prd_commands(app, commands);
+#endif
+#ifdef MASONRY_HAVE_CASES_CLI
+  masonry::add_case_commands(app, commands);
+#endif
+#ifdef MASONRY_HAVE_DEM_CLI
+  masonry::add_dem_commands(app, commands);
+#endif
+#ifdef MASONRY_HAVE_COMPARE_CLI
+  masonry::add_compare_commands(app, commands);
+#endif
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  for (const masonry::Command& c : commands) {
+    if (!c.app->parsed()) continue;
+    try {
+      return c.run();
+    } catch (const std::exception& e) {
+      // One line, whatever went wrong: the message names the file, block and field.
+      std::string msg = e.what();
+      for (char& ch : msg)
+        if (ch == '\n') ch = ' ';
+      std::cerr << "masonry " << c.app->get_name() << ": " << msg << "\n";
+      return 2;
+    }
+  }
+  std::cerr << "masonry: no command given (see --help)\n";
+  return 2;
+}

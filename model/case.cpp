@@ -1,0 +1,364 @@
+#include "case.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "interfaces.hpp"
+
+namespace masonry {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+int Case::block_index(const std::string& id) const {
+  for (size_t i = 0; i < blocks.size(); ++i)
+    if (blocks[i].id == id) return static_cast<int>(i);
+  return -1;
+}
+
+double signed_area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (size_t i = 0, n = p.size(); i < n; ++i) {
+    const Vec2& u = p[i];
+    const Vec2& v = p[(i + 1) % n];
+    a += u.x() * v.y() - v.x() * u.y();
+  }
+  return 0.5 * a;
+}
+
+Vec2 centroid(const std::vector<Vec2>& p) {
+  // Relative to the first vertex, so that blocks far from the origin keep their digits.
+  const Vec2 o = p.front();
+  double a = 0;
+  Vec2 c(0, 0);
+  for (size_t i = 0, n = p.size(); i < n; ++i) {
+    const Vec2 u = p[i] - o, v = p[(i + 1) % n] - o;
+    const double w = u.x() * v.y() - v.x() * u.y();
+    a += w;
+    c += w * (u + v);
+  }
+  return o + c / (3.0 * a);
+}
+
+double polar_moment(const std::vector<Vec2>& p) {
+  const Vec2 o = centroid(p);
+  double ixx = 0, a = 0;
+  for (size_t i = 0, n = p.size(); i < n; ++i) {
+    const Vec2 u = p[i] - o, v = p[(i + 1) % n] - o;
+    const double w = u.x() * v.y() - v.x() * u.y();
+    a += w;
+    ixx += w * (u.squaredNorm() + u.dot(v) + v.squaredNorm());
+  }
+  // Orientation-independent: both sums change sign together.
+  return std::abs(ixx / 12.0);
+}
+
+double scene_size(const Case& c) {
+  Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  for (const Block& b : c.blocks)
+    for (const Vec2& v : b.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+  return (hi - lo).maxCoeff();
+}
+
+double block_mass(const Block& b) { return b.density * std::abs(signed_area(b.vertices)) * b.depth; }
+
+namespace {
+
+// Line and column of a byte offset, for JSON syntax errors.
+std::pair<int, int> line_col(const std::string& text, size_t offset) {
+  int line = 1, col = 1;
+  for (size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return {line, col};
+}
+
+struct Reader {
+  std::string source;
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw CaseError(source + ": " + where + ": " + what);
+  }
+
+  void only(const json& obj, const std::string& where, std::initializer_list<const char*> keys) const {
+    if (!obj.is_object()) fail(where, "must be a JSON object");
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      bool known = false;
+      for (const char* k : keys) known = known || it.key() == k;
+      if (!known) fail(where, "unknown field '" + it.key() + "'");
+    }
+  }
+
+  double number(const json& v, const std::string& where, const std::string& field) const {
+    if (!v.is_number()) fail(where, "field '" + field + "' must be a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(where, "field '" + field + "' is not a finite number");
+    return x;
+  }
+
+  double number(const json& obj, const std::string& where, const char* field, double dflt) const {
+    auto it = obj.find(field);
+    return it == obj.end() ? dflt : number(*it, where, field);
+  }
+
+  Vec2 point(const json& v, const std::string& where, const std::string& field) const {
+    if (!v.is_array() || v.size() != 2) fail(where, "field '" + field + "' must be [x, y]");
+    return Vec2(number(v[0], where, field), number(v[1], where, field));
+  }
+
+  std::string string(const json& obj, const std::string& where, const char* field,
+                     const std::string& dflt) const {
+    auto it = obj.find(field);
+    if (it == obj.end()) return dflt;
+    if (!it->is_string()) fail(where, std::string("field '") + field + "' must be a string");
+    return it->get<std::string>();
+  }
+
+  int block_ref(const Case& c, const json& obj, const std::string& where) const {
+    auto it = obj.find("block");
+    if (it == obj.end() || !it->is_string()) fail(where, "field 'block' must name a block");
+    const int b = c.block_index(it->get<std::string>());
+    if (b < 0) fail(where, "field 'block': no block '" + it->get<std::string>() + "'");
+    return b;
+  }
+};
+
+}  // namespace
+
+Case parse_case(const std::string& text, const std::string& source) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    auto [line, col] = line_col(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string msg = e.what();
+    // Keep nlohmann's reason, drop its own "[json.exception...] parse error at ..." prefix.
+    auto pos = msg.find(": syntax error");
+    std::string reason = pos == std::string::npos ? msg : msg.substr(pos + 2);
+    throw CaseError(source + ":" + std::to_string(line) + ":" + std::to_string(col) +
+                    ": malformed JSON: " + reason);
+  }
+  Reader r{source};
+  Case c;
+  c.source = source;
+  r.only(doc, "case", {"format", "name", "description", "gravity", "blocks", "loads", "motion", "prd", "dem"});
+  const std::string format = r.string(doc, "case", "format", "masonry-case/1");
+  if (format != "masonry-case/1") r.fail("case", "field 'format': expected \"masonry-case/1\", got \"" + format + "\"");
+  c.name = r.string(doc, "case", "name", source);
+  c.description = r.string(doc, "case", "description", "");
+  c.gravity = r.number(doc, "case", "gravity", 9.81);
+  if (c.gravity < 0) r.fail("case", "field 'gravity' must be >= 0 (it acts along -y)");
+
+  if (!doc.contains("blocks") || !doc["blocks"].is_array() || doc["blocks"].empty())
+    r.fail("case", "field 'blocks' must be a non-empty array");
+  std::set<std::string> ids;
+  for (size_t i = 0; i < doc["blocks"].size(); ++i) {
+    const json& jb = doc["blocks"][i];
+    std::string where = "block #" + std::to_string(i);
+    if (jb.is_object() && jb.contains("id") && jb["id"].is_string())
+      where = "block '" + jb["id"].get<std::string>() + "'";
+    r.only(jb, where, {"id", "vertices", "depth", "density", "support"});
+    Block b;
+    if (!jb.contains("id") || !jb["id"].is_string() || jb["id"].get<std::string>().empty())
+      r.fail(where, "field 'id' must be a non-empty string");
+    b.id = jb["id"].get<std::string>();
+    if (!ids.insert(b.id).second) r.fail(where, "field 'id': duplicate id");
+    if (!jb.contains("vertices") || !jb["vertices"].is_array())
+      r.fail(where, "field 'vertices' must be an array of [x, y]");
+    for (const json& v : jb["vertices"]) b.vertices.push_back(r.point(v, where, "vertices"));
+    if (jb.contains("support")) {
+      if (!jb["support"].is_boolean()) r.fail(where, "field 'support' must be true or false");
+      b.support = jb["support"].get<bool>();
+    }
+    b.depth = r.number(jb, where, "depth", 1.0);
+    if (!(b.depth > 0)) r.fail(where, "field 'depth' must be positive");
+    if (!b.support) {
+      if (!jb.contains("density")) r.fail(where, "field 'density' is required for a non-support block");
+      b.density = r.number(jb["density"], where, "density");
+      if (!(b.density > 0)) r.fail(where, "field 'density' must be positive");
+    } else {
+      b.density = r.number(jb, where, "density", 0.0);
+      if (b.density < 0) r.fail(where, "field 'density' must not be negative");
+    }
+    c.blocks.push_back(std::move(b));
+  }
+
+  if (doc.contains("loads")) {
+    if (!doc["loads"].is_array()) r.fail("loads", "must be an array");
+    for (size_t i = 0; i < doc["loads"].size(); ++i) {
+      const json& jl = doc["loads"][i];
+      const std::string where = "load #" + std::to_string(i);
+      r.only(jl, where, {"block", "force", "point"});
+      Load l;
+      l.block = r.block_ref(c, jl, where);
+      if (c.blocks[l.block].support) r.fail(where, "field 'block': '" + c.blocks[l.block].id + "' is a support; loads go on free blocks");
+      if (!jl.contains("force")) r.fail(where, "field 'force' is required");
+      l.force = r.point(jl["force"], where, "force");
+      l.point = jl.contains("point") ? r.point(jl["point"], where, "point") : centroid(c.blocks[l.block].vertices);
+      c.loads.push_back(l);
+    }
+  }
+
+  if (doc.contains("motion")) {
+    const json& jm = doc["motion"];
+    r.only(jm, "motion", {"step", "max_steps", "supports"});
+    c.motion.step = r.number(jm, "motion", "step", c.motion.step);
+    if (!(c.motion.step > 0)) r.fail("motion", "field 'step' must be positive");
+    if (jm.contains("max_steps")) {
+      if (!jm["max_steps"].is_number_integer() || jm["max_steps"].get<long long>() < 0 ||
+          jm["max_steps"].get<long long>() > 100000000)
+        r.fail("motion", "field 'max_steps' must be a non-negative integer");
+      c.motion.max_steps = jm["max_steps"].get<int>();
+    }
+    if (jm.contains("supports")) {
+      if (!jm["supports"].is_array()) r.fail("motion", "field 'supports' must be an array");
+      std::set<int> seen;
+      for (size_t i = 0; i < jm["supports"].size(); ++i) {
+        const json& js = jm["supports"][i];
+        std::string where = "motion.supports #" + std::to_string(i);
+        r.only(js, where, {"block", "translation", "rotation", "about"});
+        SupportMotion s;
+        s.block = r.block_ref(c, js, where);
+        where = "motion of block '" + c.blocks[s.block].id + "'";
+        if (!c.blocks[s.block].support) r.fail(where, "field 'block': not a support block (add \"support\": true)");
+        if (!seen.insert(s.block).second) r.fail(where, "field 'block': motion given twice");
+        if (js.contains("translation")) s.translation = r.point(js["translation"], where, "translation");
+        s.rotation = r.number(js, where, "rotation", 0.0);
+        s.about = js.contains("about") ? r.point(js["about"], where, "about") : centroid(c.blocks[s.block].vertices);
+        c.motion.supports.push_back(s);
+      }
+    }
+  }
+
+  if (doc.contains("prd")) {
+    const json& jp = doc["prd"];
+    r.only(jp, "prd", {"contact_tolerance"});
+    c.prd.contact_tolerance = r.number(jp, "prd", "contact_tolerance", c.prd.contact_tolerance);
+    if (!(c.prd.contact_tolerance > 0)) r.fail("prd", "field 'contact_tolerance' must be positive");
+  }
+
+  if (doc.contains("dem")) {
+    const json& jd = doc["dem"];
+    r.only(jd, "dem", {"young_modulus", "poisson", "friction_angle", "kn", "ks", "stiffness_reduction", "damping",
+                       "timestep_factor", "equilibrium_tolerance", "velocity_tolerance", "hold_time"});
+    DemOptions& d = c.dem;
+    d.young_modulus = r.number(jd, "dem", "young_modulus", d.young_modulus);
+    d.poisson = r.number(jd, "dem", "poisson", d.poisson);
+    d.friction_angle = r.number(jd, "dem", "friction_angle", d.friction_angle);
+    if (jd.contains("kn")) d.kn = r.number(jd["kn"], "dem", "kn");
+    if (jd.contains("ks")) d.ks = r.number(jd["ks"], "dem", "ks");
+    d.stiffness_reduction = r.number(jd, "dem", "stiffness_reduction", d.stiffness_reduction);
+    d.damping = r.number(jd, "dem", "damping", d.damping);
+    d.timestep_factor = r.number(jd, "dem", "timestep_factor", d.timestep_factor);
+    d.equilibrium_tolerance = r.number(jd, "dem", "equilibrium_tolerance", d.equilibrium_tolerance);
+    d.velocity_tolerance = r.number(jd, "dem", "velocity_tolerance", d.velocity_tolerance);
+    d.hold_time = r.number(jd, "dem", "hold_time", d.hold_time);
+    if (!(d.young_modulus > 0)) r.fail("dem", "field 'young_modulus' must be positive");
+    if (!(d.poisson > -1 && d.poisson < 0.5)) r.fail("dem", "field 'poisson' must lie in (-1, 0.5)");
+    if (!(d.friction_angle >= 0 && d.friction_angle <= 90)) r.fail("dem", "field 'friction_angle' must lie in [0, 90] degrees");
+    if (d.kn && !(*d.kn > 0)) r.fail("dem", "field 'kn' must be positive");
+    if (d.ks && !(*d.ks > 0)) r.fail("dem", "field 'ks' must be positive");
+    if (!(d.stiffness_reduction > 0)) r.fail("dem", "field 'stiffness_reduction' must be positive");
+    if (!(d.damping >= 0 && d.damping < 1)) r.fail("dem", "field 'damping' must lie in [0, 1)");
+    if (!(d.timestep_factor > 0)) r.fail("dem", "field 'timestep_factor' must be positive");
+    if (!(d.equilibrium_tolerance > 0)) r.fail("dem", "field 'equilibrium_tolerance' must be positive");
+    if (!(d.velocity_tolerance > 0)) r.fail("dem", "field 'velocity_tolerance' must be positive");
+    if (!(d.hold_time > 0)) r.fail("dem", "field 'hold_time' must be positive");
+  }
+
+  // Orientation: store counter-clockwise.
+  for (Block& b : c.blocks)
+    if (b.vertices.size() >= 3 && signed_area(b.vertices) < 0) std::reverse(b.vertices.begin(), b.vertices.end());
+
+  validate_geometry(c);
+
+  bool any_support = false, any_free = false;
+  for (const Block& b : c.blocks) {
+    any_support = any_support || b.support;
+    any_free = any_free || !b.support;
+  }
+  if (!any_support) r.fail("blocks", "no support block (mark at least one with \"support\": true)");
+  if (!any_free) r.fail("blocks", "no free block: every block is a support");
+
+  // Every free block must touch something, or it would fall through any method.
+  const std::vector<Interface> ifs = detect_interfaces(c, c.prd.contact_tolerance);
+  std::vector<char> touched(c.blocks.size(), 0);
+  for (const Interface& f : ifs) touched[f.i] = touched[f.j] = 1;
+  for (size_t i = 0; i < c.blocks.size(); ++i)
+    if (!touched[i] && !c.blocks[i].support)
+      r.fail("block '" + c.blocks[i].id + "'", "field 'vertices': the block touches no other block");
+  return c;
+}
+
+Case load_case(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError(path + ": cannot open the case file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_case(ss.str(), path);
+}
+
+std::string case_to_json(const Case& c) {
+  ordered_json doc = ordered_json::object();
+  doc["format"] = "masonry-case/1";
+  doc["name"] = c.name;
+  if (!c.description.empty()) doc["description"] = c.description;
+  doc["gravity"] = c.gravity;
+  ordered_json blocks = ordered_json::array();
+  for (const Block& b : c.blocks) {
+    ordered_json jb = ordered_json::object();
+    jb["id"] = b.id;
+    ordered_json vs = ordered_json::array();
+    for (const Vec2& v : b.vertices) vs.push_back({v.x(), v.y()});
+    jb["vertices"] = vs;
+    jb["depth"] = b.depth;
+    if (b.support) {
+      jb["support"] = true;
+    } else {
+      jb["density"] = b.density;
+    }
+    blocks.push_back(jb);
+  }
+  doc["blocks"] = blocks;
+  if (!c.loads.empty()) {
+    ordered_json loads = ordered_json::array();
+    for (const Load& l : c.loads)
+      loads.push_back({{"block", c.blocks[l.block].id}, {"force", {l.force.x(), l.force.y()}}, {"point", {l.point.x(), l.point.y()}}});
+    doc["loads"] = loads;
+  }
+  ordered_json sup = ordered_json::array();
+  for (const SupportMotion& s : c.motion.supports)
+    sup.push_back({{"block", c.blocks[s.block].id},
+                   {"translation", {s.translation.x(), s.translation.y()}},
+                   {"rotation", s.rotation},
+                   {"about", {s.about.x(), s.about.y()}}});
+  doc["motion"] = {{"step", c.motion.step}, {"max_steps", c.motion.max_steps}, {"supports", sup}};
+  doc["prd"] = {{"contact_tolerance", c.prd.contact_tolerance}};
+  ordered_json dem = {{"young_modulus", c.dem.young_modulus},
+              {"poisson", c.dem.poisson},
+              {"friction_angle", c.dem.friction_angle},
+              {"stiffness_reduction", c.dem.stiffness_reduction},
+              {"damping", c.dem.damping},
+              {"timestep_factor", c.dem.timestep_factor},
+              {"equilibrium_tolerance", c.dem.equilibrium_tolerance},
+              {"velocity_tolerance", c.dem.velocity_tolerance},
+              {"hold_time", c.dem.hold_time}};
+  if (c.dem.kn) dem["kn"] = *c.dem.kn;
+  if (c.dem.ks) dem["ks"] = *c.dem.ks;
+  doc["dem"] = dem;
+  return doc.dump(1, ' ') + "\n";
+}
+
+}  // namespace masonry

@@ -1,0 +1,106 @@
+// The case model shared by every method: blocks, loads, the prescribed support motion and the
+// per-method options. SI units throughout: lengths in m, forces in N, density in kg/m^3,
+// gravity in m/s^2, rotations in rad. The one exception is friction_angle, in degrees, as
+// every masonry text quotes it.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace masonry {
+
+using Vec2 = Eigen::Vector2d;
+
+// Bad input: the message is one line naming the file, the block and the field.
+struct CaseError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Block {
+  std::string id;
+  std::vector<Vec2> vertices;  // counter-clockwise after loading (input may be either way)
+  double depth = 1.0;          // out-of-plane thickness, m
+  double density = 0.0;        // kg/m^3; unused for supports
+  bool support = false;        // prescribed motion (or fixed), no unknowns
+};
+
+struct Load {
+  int block = -1;    // index into Case::blocks
+  Vec2 force{0, 0};  // N, dead load: keeps its direction as the block moves
+  Vec2 point{0, 0};  // m, material point of the block, in the initial configuration
+};
+
+// Per unit of the path parameter d, a support translates by `translation` and turns by
+// `rotation` about `about`, a point attached to it (initial configuration).
+struct SupportMotion {
+  int block = -1;
+  Vec2 translation{0, 0};  // m per m of d
+  double rotation = 0.0;   // rad per m of d
+  Vec2 about{0, 0};
+};
+
+struct Motion {
+  double step = 0.001;  // increment of d per step, m
+  int max_steps = 1000;
+  std::vector<SupportMotion> supports;
+};
+
+struct PrdOptions {
+  // Length (m) below which an endpoint's gap counts as closed; also the geometric tolerance of
+  // interface detection.
+  double contact_tolerance = 1e-5;
+};
+
+struct DemOptions {
+  double young_modulus = 3.0e10;        // Pa
+  double poisson = 0.2;
+  double friction_angle = 35.0;         // degrees
+  std::optional<double> kn;             // normal joint stiffness, Pa/m (default E / h_block)
+  std::optional<double> ks;             // shear joint stiffness, Pa/m (default G / h_block)
+  double stiffness_reduction = 1.0;     // kn and ks are divided by this (the paper used 10)
+  double damping = 0.8;                 // local non-viscous damping coefficient, 0..1
+  double timestep_factor = 0.2;         // safety factor on the critical time step
+  double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight
+  double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
+  double hold_time = 3.0;               // model time budget per hold, s
+};
+
+struct Case {
+  std::string source;  // file name, for messages
+  std::string name;
+  std::string description;
+  double gravity = 9.81;  // m/s^2, acting along -y
+  std::vector<Block> blocks;
+  std::vector<Load> loads;
+  Motion motion;
+  PrdOptions prd;
+  DemOptions dem;
+
+  int block_index(const std::string& id) const;  // -1 if absent
+};
+
+// Parses and validates a case (JSON text). `source` names the file in messages.
+Case parse_case(const std::string& text, const std::string& source);
+// Reads, parses and validates a case file.
+Case load_case(const std::string& path);
+// Serialises a case to the masonry-case/1 JSON format (deterministic, round-trips).
+std::string case_to_json(const Case& c);
+
+// Geometric validity of the blocks alone (vertex count, area, self-intersection, overlaps,
+// finite numbers); throws CaseError. parse_case calls it; generators call it too.
+void validate_geometry(const Case& c);
+
+// Polygon helpers (any orientation).
+double signed_area(const std::vector<Vec2>& poly);
+Vec2 centroid(const std::vector<Vec2>& poly);
+// Second moment of area about the centroid (polar), m^4.
+double polar_moment(const std::vector<Vec2>& poly);
+// Largest extent of all blocks' bounding box: the scene size used to scale tolerances.
+double scene_size(const Case& c);
+// Mass (kg) and weight (N) of a block: density * area * depth (* gravity).
+double block_mass(const Block& b);
+
+}  // namespace masonry

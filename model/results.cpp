@@ -1,0 +1,118 @@
+#include "results.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace masonry {
+
+using ojson = nlohmann::ordered_json;
+
+namespace {
+// JSON has no NaN or infinity: a non-finite number is written as null, never silently as 0.
+ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
+ojson vec(const Vec2& v) { return ojson::array({num(v.x()), num(v.y())}); }
+}  // namespace
+
+ojson to_json(const RunResult& r, const Case& c) {
+  ojson j;
+  j["format"] = "masonry-results/1";
+  j["units"] = "SI: m, N, J, s, rad";
+  j["method"] = r.method;
+  j["case"] = r.case_name;
+  j["capacity"] = num(r.capacity);
+  j["stable_steps"] = r.stable_steps;
+  j["collapsed"] = r.collapsed;
+  j["stopped"] = r.stopped;
+  if (!r.message.empty()) j["message"] = r.message;
+  j["total_weight"] = num(r.total_weight);
+  j["settings"] = r.settings;
+  ojson t;
+  t["total_s"] = num(r.timing.total_s);
+  if (r.method == "prd") {
+    t["lp_s"] = num(r.timing.lp_s);
+    t["lp_solves"] = r.timing.lp_solves;
+  } else {
+    t["cycles"] = r.timing.cycles;
+  }
+  j["timing"] = t;
+  ojson blocks = ojson::array();
+  for (const Block& b : c.blocks) blocks.push_back({{"id", b.id}, {"support", b.support}});
+  j["blocks"] = blocks;
+  ojson joints = ojson::array();
+  for (size_t k = 0; k < r.joints.size(); ++k) {
+    const JointInfo& f = r.joints[k];
+    joints.push_back({{"id", k},
+                      {"blocks", {c.blocks[f.i].id, c.blocks[f.j].id}},
+                      {"a", vec(f.a)},
+                      {"b", vec(f.b)}});
+  }
+  j["joints"] = joints;
+  ojson steps = ojson::array();
+  for (const StepRecord& s : r.steps) {
+    ojson js;
+    js["step"] = s.index;
+    js["d"] = num(s.d);
+    js["energy"] = num(s.energy);
+    ojson oc = ojson::array();
+    for (const OpenCorner& o : s.open_corners) oc.push_back({{"joint", o.joint}, {"corner", o.corner == 0 ? "A" : "B"}, {"gap", num(o.gap)}});
+    js["open_corners"] = oc;
+    js["cracked"] = s.cracked;
+    ojson re = ojson::array();
+    for (const Reaction& x : s.reactions) re.push_back({{"support", x.support}, {"force", vec(x.force)}, {"moment", num(x.moment)}});
+    js["reactions"] = re;
+    ojson po = ojson::array();
+    for (const Pose& p : s.poses) po.push_back(ojson::array({num(p.x), num(p.y), num(p.angle)}));
+    js["poses"] = po;
+    ojson fo = ojson::array();
+    for (const JointForce& f : s.forces)
+      fo.push_back({{"joint", f.joint}, {"normal", num(f.normal)}, {"shear", num(f.shear)}, {"point", vec(f.point)}});
+    js["forces"] = fo;
+    for (auto it = s.extra.begin(); it != s.extra.end(); ++it) js[it.key()] = it.value();
+    steps.push_back(js);
+  }
+  j["steps"] = steps;
+  return j;
+}
+
+std::string steps_csv(const RunResult& r) {
+  std::ostringstream o;
+  o.precision(12);
+  o << "step,d_m,energy_J,open_corners,cracked_joints";
+  if (!r.steps.empty())
+    for (const Reaction& x : r.steps.front().reactions) o << ",Fx_" << x.support << "_N,Fy_" << x.support << "_N";
+  o << "\n";
+  for (const StepRecord& s : r.steps) {
+    o << s.index << "," << s.d << "," << s.energy << "," << s.open_corners.size() << "," << s.cracked.size();
+    for (const Reaction& x : s.reactions) o << "," << x.force.x() << "," << x.force.y();
+    o << "\n";
+  }
+  return o.str();
+}
+
+void write_file_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(tmp + ": cannot write");
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(tmp + ": write failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error(path + ": cannot replace: " + ec.message());
+}
+
+void write_results(const std::string& dir, const RunResult& r, const Case& c) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir + ": cannot create the output directory: " + ec.message());
+  write_file_atomic(dir + "/results.json", to_json(r, c).dump(1) + "\n");
+  write_file_atomic(dir + "/steps.csv", steps_csv(r));
+}
+
+}  // namespace masonry

@@ -1,0 +1,84 @@
+// Results of a capacity run, in the shape both methods write (results.json and steps.csv).
+// Solvers fill these structs; only the writers below touch files.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "case.hpp"
+
+namespace masonry {
+
+struct Reaction {
+  std::string support;  // block id
+  Vec2 force{0, 0};     // N, force the structure receives from the support (sum over its joints)
+  double moment = 0.0;  // N m, about the support's `about` point (its centroid if fixed)
+};
+
+struct OpenCorner {
+  int joint = -1;     // index into RunResult::joints
+  int corner = 0;     // 0 = A, 1 = B
+  double gap = 0.0;   // m, normal opening at the end of the step
+};
+
+struct JointForce {
+  int joint = -1;
+  double normal = 0.0;      // N, compressive resultant (>= 0)
+  double shear = 0.0;       // N, along the joint tangent
+  Vec2 point{0, 0};         // application point of the resultant, current configuration
+};
+
+struct Pose {
+  double x = 0, y = 0, angle = 0;  // centroid (m) and rotation since the start (rad)
+};
+
+struct StepRecord {
+  int index = 0;     // 0 = initial configuration
+  double d = 0.0;    // path parameter after this step, m
+  double energy = 0.0;  // total potential energy of the loads relative to the start, J
+  std::vector<OpenCorner> open_corners;
+  std::vector<int> cracked;          // joints with at least one open corner
+  std::vector<Reaction> reactions;   // one per support block
+  std::vector<Pose> poses;           // one per block (supports included), in case order
+  std::vector<JointForce> forces;    // one per joint carrying force
+  nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // method-specific fields
+};
+
+struct JointInfo {
+  int i = -1, j = -1;  // block indices
+  Vec2 a{0, 0}, b{0, 0};  // endpoints in the initial configuration
+};
+
+struct Timing {
+  double total_s = 0.0;  // wall time of the run without I/O
+  double lp_s = 0.0;     // PRD: time in GLPK
+  long long lp_solves = 0;
+  long long cycles = 0;  // DEM: integration cycles
+};
+
+struct RunResult {
+  std::string method;           // "prd" or "dem"
+  std::string case_name;
+  double capacity = 0.0;        // m, the last stable d
+  int stable_steps = 0;
+  bool collapsed = false;
+  std::string stopped = "running";  // "collapse", "max_steps", "error" (or "running" while going)
+  std::string message;
+  double total_weight = 0.0;    // N, of the free blocks plus loads' vertical parts
+  std::vector<JointInfo> joints;
+  std::vector<StepRecord> steps;
+  Timing timing;
+  nlohmann::ordered_json settings = nlohmann::ordered_json::object();
+};
+
+nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
+// One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.
+std::string steps_csv(const RunResult& r);
+// Writes DIR/results.json and DIR/steps.csv, each through a temporary file and a rename, so a
+// reader (or a later failure) never sees a half-written file. Creates DIR.
+void write_results(const std::string& dir, const RunResult& r, const Case& c);
+// Writes a file atomically (temporary file, then rename).
+void write_file_atomic(const std::string& path, const std::string& text);
+
+}  // namespace masonry

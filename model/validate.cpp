@@ -1,0 +1,126 @@
+// Geometric validation of a case's blocks: every message names the file, the block and the field.
+#include <algorithm>
+#include <cmath>
+
+#include "case.hpp"
+#include "interfaces.hpp"
+
+namespace masonry {
+
+namespace {
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Proper or touching intersection of closed segments pq and rs.
+bool segments_intersect(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s, double tol) {
+  const Vec2 d1 = q - p, d2 = s - r;
+  const double den = cross(d1, d2);
+  if (std::abs(den) <= 1e-14 * d1.norm() * d2.norm()) {
+    // Parallel: they meet only if collinear and overlapping.
+    if (distance_to_segment(r, p, q) > tol && distance_to_segment(s, p, q) > tol &&
+        distance_to_segment(p, r, s) > tol && distance_to_segment(q, r, s) > tol)
+      return false;
+    return std::abs(cross(d1, r - p)) <= tol * d1.norm();
+  }
+  const double t = cross(r - p, d2) / den, u = cross(r - p, d1) / den;
+  const double et = tol / d1.norm(), eu = tol / d2.norm();
+  return t >= -et && t <= 1 + et && u >= -eu && u <= 1 + eu;
+}
+
+// Proper crossing: interior to both segments, away from their ends by more than tol.
+bool segments_cross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s, double tol) {
+  const Vec2 d1 = q - p, d2 = s - r;
+  const double den = cross(d1, d2);
+  if (std::abs(den) <= 1e-9 * d1.norm() * d2.norm()) return false;
+  const double t = cross(r - p, d2) / den, u = cross(r - p, d1) / den;
+  const double et = tol / d1.norm(), eu = tol / d2.norm();
+  return t > et && t < 1 - et && u > eu && u < 1 - eu;
+}
+
+struct Box {
+  Vec2 lo, hi;
+};
+
+Box bounds(const std::vector<Vec2>& p) {
+  Box b{Vec2(INFINITY, INFINITY), Vec2(-INFINITY, -INFINITY)};
+  for (const Vec2& v : p) {
+    b.lo = b.lo.cwiseMin(v);
+    b.hi = b.hi.cwiseMax(v);
+  }
+  return b;
+}
+
+// A point of `a` lies inside `b` deeper than tol, or their edges cross.
+bool polygons_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol) {
+  auto deep_inside = [&](const Vec2& p, const std::vector<Vec2>& poly) {
+    return point_in_polygon(p, poly) && distance_to_boundary(p, poly) > tol;
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    const auto& P = pass == 0 ? a : b;
+    const auto& Q = pass == 0 ? b : a;
+    for (size_t k = 0, n = P.size(); k < n; ++k) {
+      const Vec2 &p = P[k], &q = P[(k + 1) % n];
+      const Vec2 mid = 0.5 * (p + q);
+      const Vec2 d = q - p;
+      // A point just inside P next to the middle of the edge (P is counter-clockwise).
+      const Vec2 in = mid + 0.01 * Vec2(-d.y(), d.x());
+      if (deep_inside(p, Q) || deep_inside(mid, Q) || (point_in_polygon(in, P) && deep_inside(in, Q))) return true;
+    }
+  }
+  for (size_t k = 0; k < a.size(); ++k)
+    for (size_t m = 0; m < b.size(); ++m)
+      if (segments_cross(a[k], a[(k + 1) % a.size()], b[m], b[(m + 1) % b.size()], tol)) return true;
+  return false;
+}
+
+}  // namespace
+
+void validate_geometry(const Case& c) {
+  const double tol = c.prd.contact_tolerance;
+  auto fail = [&](const Block& b, const std::string& what) {
+    throw CaseError(c.source + ": block '" + b.id + "': " + what);
+  };
+  for (const Block& b : c.blocks) {
+    const auto& v = b.vertices;
+    const size_t n = v.size();
+    if (n < 3) fail(b, "field 'vertices': fewer than 3 vertices");
+    for (const Vec2& p : v)
+      if (!std::isfinite(p.x()) || !std::isfinite(p.y())) fail(b, "field 'vertices': not a finite number");
+    const Box bx = bounds(v);
+    const double size = (bx.hi - bx.lo).maxCoeff();
+    if (!(std::abs(signed_area(v)) > 1e-12 * size * size) || size <= 0) fail(b, "field 'vertices': zero area");
+    for (size_t k = 0; k < n; ++k)
+      if ((v[(k + 1) % n] - v[k]).norm() <= 1e-12 * size)
+        fail(b, "field 'vertices': vertices " + std::to_string(k) + " and " + std::to_string((k + 1) % n) + " coincide");
+    for (size_t k = 0; k < n; ++k) {
+      // Adjacent edges folding back on each other.
+      const Vec2 &p = v[k], &q = v[(k + 1) % n], &r = v[(k + 2) % n];
+      const Vec2 d1 = q - p, d2 = r - q;
+      if (std::abs(cross(d1, d2)) <= 1e-12 * d1.norm() * d2.norm() && d1.dot(d2) < 0)
+        fail(b, "field 'vertices': self-intersecting (edges " + std::to_string(k) + " and " +
+                    std::to_string((k + 1) % n) + " fold back)");
+      for (size_t m = k + 2; m < n; ++m) {
+        if (k == 0 && m == n - 1) continue;  // adjacent through the closing edge
+        if (segments_intersect(v[k], v[(k + 1) % n], v[m], v[(m + 1) % n], 1e-12 * size))
+          fail(b, "field 'vertices': self-intersecting (edges " + std::to_string(k) + " and " + std::to_string(m) + " cross)");
+      }
+    }
+  }
+
+  // Overlaps: sort by the lower x of the bounding box, compare boxes that overlap in x.
+  std::vector<std::pair<Box, size_t>> boxes;
+  for (size_t i = 0; i < c.blocks.size(); ++i) boxes.push_back({bounds(c.blocks[i].vertices), i});
+  std::sort(boxes.begin(), boxes.end(), [](const auto& x, const auto& y) {
+    return x.first.lo.x() < y.first.lo.x() || (x.first.lo.x() == y.first.lo.x() && x.second < y.second);
+  });
+  for (size_t k = 0; k < boxes.size(); ++k)
+    for (size_t m = k + 1; m < boxes.size() && boxes[m].first.lo.x() < boxes[k].first.hi.x() - tol; ++m) {
+      const Box &p = boxes[k].first, &q = boxes[m].first;
+      if (q.lo.y() >= p.hi.y() - tol || q.hi.y() <= p.lo.y() + tol) continue;
+      const size_t i = std::min(boxes[k].second, boxes[m].second), j = std::max(boxes[k].second, boxes[m].second);
+      if (polygons_overlap(c.blocks[i].vertices, c.blocks[j].vertices, tol))
+        fail(c.blocks[j], "field 'vertices': overlaps block '" + c.blocks[i].id + "'");
+    }
+}
+
+}  // namespace masonry
