@@ -69,12 +69,13 @@ ojson to_json(const RunResult& r, const Case& c) {
     js["poses"] = po;
     ojson fo = ojson::array();
     for (const JointForce& f : s.forces)
-      fo.push_back({{"joint", f.joint}, {"normal", num(f.normal)}, {"shear", num(f.shear)}, {"point", vec(f.point)}});
+      fo.push_back({{"joint", f.joint}, {"normal", num(f.normal)}, {"shear", num(f.shear)}, {"point", vec(f.point)}, {"n", vec(f.n)}});
     js["forces"] = fo;
     for (auto it = s.extra.begin(); it != s.extra.end(); ++it) js[it.key()] = it.value();
     steps.push_back(js);
   }
   j["steps"] = steps;
+  for (auto it = r.extra.begin(); it != r.extra.end(); ++it) j[it.key()] = it.value();
   return j;
 }
 

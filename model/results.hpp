@@ -27,6 +27,7 @@ struct JointForce {
   double normal = 0.0;      // N, compressive resultant (>= 0)
   double shear = 0.0;       // N, along the joint tangent
   Vec2 point{0, 0};         // application point of the resultant, current configuration
+  Vec2 n{0, 0};             // unit normal of the joint (out of block i), current configuration
 };
 
 struct Pose {
@@ -70,6 +71,7 @@ struct RunResult {
   std::vector<StepRecord> steps;
   Timing timing;
   nlohmann::ordered_json settings = nlohmann::ordered_json::object();
+  nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // method-specific, top level
 };
 
 nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
