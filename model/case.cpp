@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -149,6 +150,21 @@ Case parse_case(const std::string& text, const std::string& source) {
     std::string reason = pos == std::string::npos ? msg : msg.substr(pos + 2);
     throw CaseError(source + ":" + std::to_string(line) + ":" + std::to_string(col) +
                     ": malformed JSON: " + reason);
+  } catch (const json::out_of_range&) {
+    // A literal too large for a double (1e999): nlohmann gives no position, so find it.
+    size_t at = 0;
+    for (size_t i = 0; i < text.size(); ++i) {
+      const char ch = text[i];
+      if ((ch == '-' || (ch >= '0' && ch <= '9')) && (i == 0 || std::string(",[: \n\t\r").find(text[i - 1]) != std::string::npos)) {
+        if (!std::isfinite(std::strtod(text.c_str() + i, nullptr))) {
+          at = i;
+          break;
+        }
+      }
+    }
+    auto [line, col] = line_col(text, at);
+    throw CaseError(source + ":" + std::to_string(line) + ":" + std::to_string(col) +
+                    ": malformed JSON: number out of range (not a finite number)");
   }
   Reader r{source};
   Case c;

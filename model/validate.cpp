@@ -88,10 +88,14 @@ void validate_geometry(const Case& c) {
       if (!std::isfinite(p.x()) || !std::isfinite(p.y())) fail(b, "field 'vertices': not a finite number");
     const Box bx = bounds(v);
     const double size = (bx.hi - bx.lo).maxCoeff();
-    if (!(std::abs(signed_area(v)) > 1e-12 * size * size) || size <= 0) fail(b, "field 'vertices': zero area");
     for (size_t k = 0; k < n; ++k)
       if ((v[(k + 1) % n] - v[k]).norm() <= 1e-12 * size)
         fail(b, "field 'vertices': vertices " + std::to_string(k) + " and " + std::to_string((k + 1) % n) + " coincide");
+    // All vertices on one line: no area (checked before self-intersection, which it also is).
+    double spread = 0;
+    const Vec2 axis = (v[1] - v[0]).normalized();
+    for (const Vec2& p : v) spread = std::max(spread, std::abs(cross(axis, p - v[0])));
+    if (spread <= 1e-12 * size) fail(b, "field 'vertices': zero area");
     for (size_t k = 0; k < n; ++k) {
       // Adjacent edges folding back on each other.
       const Vec2 &p = v[k], &q = v[(k + 1) % n], &r = v[(k + 2) % n];
@@ -105,6 +109,7 @@ void validate_geometry(const Case& c) {
           fail(b, "field 'vertices': self-intersecting (edges " + std::to_string(k) + " and " + std::to_string(m) + " cross)");
       }
     }
+    if (!(std::abs(signed_area(v)) > 1e-12 * size * size) || size <= 0) fail(b, "field 'vertices': zero area");
   }
 
   // Overlaps: sort by the lower x of the bounding box, compare boxes that overlap in x.

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs what the build and the tests need, all from Debian's packages (run as root).
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+packages=(
+  build-essential cmake            # compiler and build
+  libeigen3-dev                    # geometry and small linear algebra
+  libglpk-dev                      # the PRD linear programs
+  libbox2d-dev                     # DEM contact geometry
+  nlohmann-json3-dev               # case and result files
+  libcli11-dev                     # the command line
+  libgtest-dev                     # tests
+  libbenchmark-dev                 # benchmarks
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

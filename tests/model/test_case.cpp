@@ -1,0 +1,250 @@
+// Case files: parsing, validation messages (one line naming file, block and field), interface
+// detection against hand-drawn geometry.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "case.hpp"
+#include "interfaces.hpp"
+
+namespace masonry {
+namespace {
+
+const char* kGround = R"({"id": "ground", "vertices": [[-2, -0.5], [2, -0.5], [2, 0], [-2, 0]], "support": true})";
+
+std::string with_blocks(const std::string& blocks, const std::string& rest = "") {
+  return std::string(R"({"format": "masonry-case/1", "name": "t", "blocks": [)") + blocks + "]" + rest + "}";
+}
+
+// The message of the CaseError that parsing throws, or "" if it parses.
+std::string error_of(const std::string& json) {
+  try {
+    parse_case(json, "bad.json");
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_error(const std::string& json, const std::vector<std::string>& parts) {
+  const std::string msg = error_of(json);
+  ASSERT_FALSE(msg.empty()) << "parsed without error: " << json;
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  EXPECT_EQ(msg.rfind("bad.json", 0), 0u) << msg;
+  for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
+}
+
+TEST(CaseFile, TheIssueExampleParses) {
+  const std::string json = R"({
+    "format": "masonry-case/1", "name": "tilting block", "gravity": 9.81,
+    "blocks": [
+      {"id": "ground", "vertices": [[-2.0, -0.5], [2.0, -0.5], [2.0, 0.0], [-2.0, 0.0]], "depth": 1.0, "support": true},
+      {"id": "block", "vertices": [[0.0, 0.0], [0.5, 0.0], [0.5, 1.0], [0.0, 1.0]], "depth": 1.0, "density": 2000.0}
+    ],
+    "loads": [{"block": "block", "force": [0.0, -500.0], "point": [0.25, 1.0]}],
+    "motion": {"step": 0.001, "max_steps": 2000,
+               "supports": [{"block": "ground", "translation": [0.0, 0.0], "rotation": 1.0, "about": [-2.0, -0.5]}]},
+    "prd": {"contact_tolerance": 1e-5},
+    "dem": {"young_modulus": 3.0e10, "poisson": 0.2, "friction_angle": 35.0}
+  })";
+  const Case c = parse_case(json, "example.json");
+  ASSERT_EQ(c.blocks.size(), 2u);
+  EXPECT_TRUE(c.blocks[0].support);
+  EXPECT_DOUBLE_EQ(block_mass(c.blocks[1]), 1000.0);
+  ASSERT_EQ(c.loads.size(), 1u);
+  ASSERT_EQ(c.motion.supports.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.motion.supports[0].rotation, 1.0);
+  EXPECT_EQ(c.motion.supports[0].about, Vec2(-2.0, -0.5));
+  // Round trip through the writer gives the same case.
+  const Case d = parse_case(case_to_json(c), "again.json");
+  EXPECT_EQ(case_to_json(c), case_to_json(d));
+}
+
+TEST(CaseFile, ClockwiseBlocksAreAccepted) {
+  const Case c = parse_case(with_blocks(std::string(kGround) +
+                                        R"(, {"id": "b", "vertices": [[0, 0], [0, 1], [0.5, 1], [0.5, 0]], "density": 1})"),
+                            "cw.json");
+  EXPECT_GT(signed_area(c.blocks[1].vertices), 0);
+  EXPECT_EQ(detect_interfaces(c, 1e-6).size(), 1u);
+}
+
+TEST(CaseFile, AboutDefaultsToTheSupportCentroid) {
+  const Case c = parse_case(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1})",
+                                        R"(, "motion": {"supports": [{"block": "ground", "translation": [1, 0]}]})"),
+                            "m.json");
+  EXPECT_NEAR(c.motion.supports[0].about.x(), 0.0, 1e-12);
+  EXPECT_NEAR(c.motion.supports[0].about.y(), -0.25, 1e-12);
+}
+
+const std::string kBlock = R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1000})";
+
+TEST(CaseErrors, FewerThanThreeVertices) {
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "thin", "vertices": [[0, 0], [1, 0]], "density": 1})"),
+               {"block 'thin'", "vertices", "fewer than 3"});
+}
+
+TEST(CaseErrors, ZeroArea) {
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "flat", "vertices": [[0, 0], [1, 0], [2, 0]], "density": 1})"),
+               {"block 'flat'", "vertices", "zero area"});
+}
+
+TEST(CaseErrors, SelfIntersection) {
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "bow", "vertices": [[0, 0], [1, 1], [1, 0], [0, 1]], "density": 1})"),
+               {"block 'bow'", "vertices", "self-intersecting"});
+}
+
+TEST(CaseErrors, OverlappingBlocks) {
+  expect_error(with_blocks(std::string(kGround) + kBlock +
+                           R"(, {"id": "b2", "vertices": [[0.5, 0.5], [1.5, 0.5], [1.5, 1.5], [0.5, 1.5]], "density": 1})"),
+               {"block 'b2'", "vertices", "overlaps block 'b'"});
+  // A copy of a block exactly on top of it overlaps too.
+  expect_error(with_blocks(std::string(kGround) + kBlock +
+                           R"(, {"id": "twin", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1})"),
+               {"block 'twin'", "overlaps"});
+}
+
+TEST(CaseErrors, BlockTouchingNothing) {
+  expect_error(with_blocks(std::string(kGround) + kBlock +
+                           R"(, {"id": "floating", "vertices": [[5, 5], [6, 5], [6, 6], [5, 6]], "density": 1})"),
+               {"block 'floating'", "vertices", "touches no other block"});
+}
+
+TEST(CaseErrors, NoSupport) {
+  expect_error(with_blocks(R"({"id": "a", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1},
+                              {"id": "b", "vertices": [[0, 1], [1, 1], [1, 2], [0, 2]], "density": 1})"),
+               {"no support"});
+}
+
+TEST(CaseErrors, MotionOnAFreeBlock) {
+  expect_error(with_blocks(std::string(kGround) + kBlock, R"(, "motion": {"supports": [{"block": "b", "translation": [1, 0]}]})"),
+               {"block 'b'", "'block'", "not a support"});
+}
+
+TEST(CaseErrors, MotionOnAnUnknownBlock) {
+  expect_error(with_blocks(std::string(kGround) + kBlock, R"(, "motion": {"supports": [{"block": "nope"}]})"),
+               {"motion", "'block'", "no block 'nope'"});
+}
+
+TEST(CaseErrors, NonFiniteNumbers) {
+  // JSON has no NaN literal: it is a syntax error with a position.
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [NaN, 0], [1, 1]], "density": 1})"),
+               {"malformed JSON"});
+  // An overflowing literal is refused with its position.
+  const std::string inf = with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1e999})");
+  expect_error(inf, {"not a finite number"});
+  EXPECT_NE(error_of(inf).find("bad.json:1:" + std::to_string(inf.find("1e999") + 1)), std::string::npos) << error_of(inf);
+}
+
+TEST(CaseErrors, NonPositiveDensityOrDepth) {
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 0})"),
+               {"block 'b'", "density", "positive"});
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": -5})"),
+               {"block 'b'", "density", "positive"});
+  expect_error(with_blocks(std::string(kGround) +
+                           R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1, "depth": 0})"),
+               {"block 'b'", "depth", "positive"});
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]]})"),
+               {"block 'b'", "density", "required"});
+}
+
+TEST(CaseErrors, MalformedJsonGivesLineAndColumn) {
+  const std::string json = "{\n  \"format\": \"masonry-case/1\",\n  \"blocks\": [ oops ]\n}";
+  expect_error(json, {"bad.json:3:", "malformed JSON"});
+  const std::string msg = error_of(json);
+  // Column of the offending token "oops" on line 3.
+  EXPECT_NE(msg.find("bad.json:3:15"), std::string::npos) << msg;
+}
+
+TEST(CaseErrors, UnknownFields) {
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1, "colour": "red"})"),
+               {"block 'b'", "unknown field 'colour'"});
+  expect_error(with_blocks(std::string(kGround) + kBlock, R"(, "prd": {"tolerance": 1e-5})"), {"prd", "unknown field 'tolerance'"});
+  expect_error(with_blocks(std::string(kGround) + kBlock, R"(, "extra": 1)"), {"case", "unknown field 'extra'"});
+}
+
+TEST(CaseErrors, DuplicateIdsAndWrongFormat) {
+  expect_error(with_blocks(std::string(kGround) + kBlock + R"(, {"id": "b", "vertices": [[0, 1], [1, 1], [1, 2], [0, 2]], "density": 1})"),
+               {"block 'b'", "duplicate"});
+  expect_error(R"({"format": "other/2", "blocks": []})", {"format"});
+}
+
+TEST(CaseErrors, MissingFileIsOneLine) {
+  try {
+    load_case("/nonexistent/case.json");
+    FAIL();
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/case.json"), std::string::npos);
+  }
+}
+
+// Interfaces ---------------------------------------------------------------------------
+
+Case blocks_case(const std::string& blocks) { return parse_case(with_blocks(blocks), "i.json"); }
+
+TEST(Interfaces, PartialOverlapGivesTheOverlapSegment) {
+  // A block straddling the edge of another: the joint is the common part of the edges.
+  const Case c = blocks_case(std::string(kGround) +
+                             R"(, {"id": "low", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1},
+                                 {"id": "top", "vertices": [[0.6, 1], [1.6, 1], [1.6, 1.5], [0.6, 1.5]], "density": 1})");
+  const auto f = detect_interfaces(c, 1e-6);
+  // ground-low and low-top (top overhangs the void: no joint there).
+  ASSERT_EQ(f.size(), 2u);
+  const Interface& j = f[1];
+  EXPECT_EQ(c.blocks[j.i].id, "low");
+  EXPECT_EQ(c.blocks[j.j].id, "top");
+  EXPECT_NEAR(j.length(), 0.4, 1e-12);
+  EXPECT_NEAR(j.normal.y(), 1.0, 1e-12);  // out of "low", into "top"
+  EXPECT_NEAR(std::min(j.a.x(), j.b.x()), 0.6, 1e-12);
+  EXPECT_NEAR(std::max(j.a.x(), j.b.x()), 1.0, 1e-12);
+}
+
+TEST(Interfaces, SplitEdgePiecesOfOnePairAreMerged) {
+  // The lower block's top edge has a vertex in its middle; the joint is still one segment.
+  const Case c = blocks_case(std::string(kGround) +
+                             R"(, {"id": "low", "vertices": [[0, 0], [1, 0], [1, 1], [0.5, 1], [0, 1]], "density": 1},
+                                 {"id": "top", "vertices": [[0, 1], [1, 1], [1, 1.5], [0, 1.5]], "density": 1})");
+  const auto f = detect_interfaces(c, 1e-6);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_NEAR(f[1].length(), 1.0, 1e-12);
+}
+
+TEST(Interfaces, GapsBeyondTheToleranceAreNotJoints) {
+  const Case c = blocks_case(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1},
+                                 {"id": "near", "vertices": [[1.001, 0], [2, 0], [2, 1], [1.001, 1]], "density": 1})");
+  EXPECT_EQ(detect_interfaces(c, 1e-4).size(), 2u);   // each on the ground, not to each other
+  EXPECT_EQ(detect_interfaces(c, 1e-2).size(), 3u);   // within a 1 cm tolerance they touch
+}
+
+TEST(Interfaces, WallOfBricksMatchesCounting) {
+  // A running-bond wall: rows of n bricks, alternate rows offset by half a brick with half
+  // bricks at the ends. Joints are countable by hand: head joints within rows and bed joints.
+  const int rows = 6, n = 8;
+  std::string blocks = R"({"id": "ground", "vertices": [[-1, -1], [9, -1], [9, 0], [-1, 0]], "support": true})";
+  int head = 0;
+  for (int r = 0; r < rows; ++r) {
+    std::vector<double> xs;
+    if (r % 2 == 0) {
+      for (int k = 0; k <= n; ++k) xs.push_back(k);
+    } else {
+      xs.push_back(0);
+      for (int k = 0; k < n; ++k) xs.push_back(k + 0.5);
+      xs.push_back(n);
+    }
+    head += static_cast<int>(xs.size()) - 2;
+    for (size_t k = 0; k + 1 < xs.size(); ++k) {
+      const double y0 = 0.5 * r, y1 = 0.5 * (r + 1);
+      blocks += ", {\"id\": \"r" + std::to_string(r) + "b" + std::to_string(k) + "\", \"vertices\": [[" +
+                std::to_string(xs[k]) + "," + std::to_string(y0) + "],[" + std::to_string(xs[k + 1]) + "," +
+                std::to_string(y0) + "],[" + std::to_string(xs[k + 1]) + "," + std::to_string(y1) + "],[" +
+                std::to_string(xs[k]) + "," + std::to_string(y1) + "]], \"density\": 1}";
+    }
+  }
+  const Case c = blocks_case(blocks);
+  // Bed joints: first row on the ground (n); between an even row (n bricks) and an odd row
+  // (n + 1 pieces) every brick meets two pieces: 2n per pair of rows.
+  const int bed = n + 2 * n * (rows - 1);
+  EXPECT_EQ(static_cast<int>(detect_interfaces(c, 1e-6).size()), head + bed);
+}
+
+}  // namespace
+}  // namespace masonry

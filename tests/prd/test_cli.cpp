@@ -1,0 +1,133 @@
+// The `masonry prd` and `masonry check` front ends, run as a user would run them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CmdResult {
+  int code;
+  std::string out, err;
+};
+
+CmdResult run(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path() / ("masonry-cli-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string out = (dir / "stdout").string(), err = (dir / "stderr").string();
+  const int rc = std::system((std::string(MASONRY_EXE) + " " + args + " >" + out + " 2>" + err).c_str());
+  auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  return {WEXITSTATUS(rc), slurp(out), slurp(err)};
+}
+
+fs::path write_case(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("masonry-cli-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+const char* kBlock = R"({
+  "format": "masonry-case/1", "name": "tilting block",
+  "blocks": [
+    {"id": "ground", "vertices": [[-2.0, -0.5], [2.0, -0.5], [2.0, 0.0], [-2.0, 0.0]], "support": true},
+    {"id": "block", "vertices": [[0.0, 0.0], [0.5, 0.0], [0.5, 1.0], [0.0, 1.0]], "density": 2000.0}
+  ],
+  "motion": {"step": 0.01, "max_steps": 2000,
+             "supports": [{"block": "ground", "rotation": 1.0, "about": [-2.0, -0.5]}]}
+})";
+
+TEST(Cli, PrdWritesResultsAndSteps) {
+  const fs::path c = write_case("block.json", kBlock);
+  const fs::path out = c.parent_path() / "out-prd";
+  fs::remove_all(out);
+  const CmdResult r = run("prd " + c.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(out / "results.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["method"], "prd");
+  EXPECT_EQ(j["stopped"], "collapse");
+  EXPECT_TRUE(j["collapsed"].get<bool>());
+  const double capacity = j["capacity"].get<double>();
+  EXPECT_LE(capacity, std::atan(0.5));
+  EXPECT_GT(capacity, std::atan(0.5) - 0.01);
+  const int stable = j["stable_steps"].get<int>();
+  ASSERT_EQ(j["steps"].size(), static_cast<size_t>(stable + 1));
+  for (const char* key : {"d", "energy", "open_corners", "cracked", "reactions"}) EXPECT_TRUE(j["steps"][1].contains(key)) << key;
+  EXPECT_EQ(j["steps"][1]["reactions"][0]["support"], "ground");
+  EXPECT_EQ(j["steps"][1]["reactions"][0]["force"].size(), 2u);
+  for (const char* key : {"total_s", "lp_s", "lp_solves"}) EXPECT_TRUE(j["timing"].contains(key)) << key;
+  EXPECT_GE(j["timing"]["lp_solves"].get<int>(), stable + 1);
+  // steps.csv: a header and one row per step.
+  std::ifstream csv(out / "steps.csv");
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, stable + 2);
+  EXPECT_FALSE(fs::exists(out / "results.json.tmp"));
+}
+
+TEST(Cli, PrdOptionsOverrideTheCase) {
+  const fs::path c = write_case("block.json", kBlock);
+  const fs::path out = c.parent_path() / "out-prd-opts";
+  const CmdResult r = run("prd " + c.string() + " --out " + out.string() + " --step 0.005 --max-steps 7 --tolerance 1e-6");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(out / "results.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["stopped"], "max_steps");
+  EXPECT_EQ(j["stable_steps"], 7);
+  EXPECT_NEAR(j["capacity"].get<double>(), 0.035, 1e-12);
+  EXPECT_EQ(j["settings"]["contact_tolerance"].get<double>(), 1e-6);
+}
+
+TEST(Cli, CheckPrintsOneJsonObject) {
+  const fs::path c = write_case("block.json", kBlock);
+  const CmdResult r = run("check " + c.string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["stable"].get<bool>());
+  EXPECT_NEAR(j["reactions"][0]["force"][1].get<double>(), 2000.0 * 9.81 * 0.5, 1e-6);
+  EXPECT_FALSE(j["forces"].empty());
+}
+
+TEST(Cli, BadCaseIsOneLineNamingBlockAndField) {
+  std::string bad = kBlock;
+  bad.replace(bad.find("\"density\": 2000.0"), 17, "\"density\": -1");
+  const fs::path c = write_case("bad.json", bad);
+  for (const std::string& cmd : {"prd " + c.string() + " --out " + (c.parent_path() / "x").string(), "check " + c.string()}) {
+    const CmdResult r = run(cmd);
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("bad.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("block 'block'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("density"), std::string::npos) << r.err;
+  }
+  const CmdResult missing = run("check /nonexistent.json");
+  EXPECT_NE(missing.code, 0);
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+}
+
+TEST(Cli, EverySubcommandHasHelp) {
+  for (const char* sub : {"prd", "check"}) {
+    const CmdResult r = run(std::string(sub) + " --help");
+    EXPECT_EQ(r.code, 0) << sub;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
+  }
+}
+
+}  // namespace
