@@ -64,3 +64,79 @@ Case circular_arch(const CircularArch& p) {
 }
 
 }  // namespace masonry
+
+namespace masonry {
+
+Case pointed_arch(const PointedArch& p) {
+  const double e = p.eccentricity, t = p.thickness;
+  if (!(p.rcirc > 0) || !(t > 0)) throw CaseError("pointed arch: need rcirc > 0 and thickness > 0");
+  if (!(e >= 0)) throw CaseError("pointed arch: the eccentricity must be >= 0");
+  if (!(p.embrace > 0) || !(p.embrace < 2 * M_PI)) throw CaseError("pointed arch: embrace must lie in (0, 2 pi)");
+  if (p.voussoirs < 1) throw CaseError("pointed arch: need at least one voussoir");
+  const double rp = p.rcirc + e;  // Rpoint
+  const double ri = rp - t / 2, re = rp + t / 2;
+  // The intrados must reach the axis, or the two halves would not meet.
+  if (!(ri > e)) throw CaseError("pointed arch: need Rcirc - t/2 > 0 (the intrados must reach the axis)");
+  const double gamma = std::asin(e / rp);  // crown angle above pi/2 (left half)
+  const double beta = p.embrace / 2 - gamma;
+  if (!(beta > 0)) throw CaseError("pointed arch: the embrace is too small for this eccentricity (alpha/2 <= asin(e/Rpoint))");
+  const int n = p.voussoirs;
+  const double phi0 = M_PI / 2 + p.embrace / 2, dphi = 2 * beta / n;
+  const Vec2 cl(e, 0), cr(-e, 0);
+  // Corner of joint k (0 = left springing .. n = right springing) on the circle of radius r.
+  // Left of the crown the angle is about the left centre; right of it, about the right centre,
+  // shifted by 2 gamma so that one formula runs over both halves (and gamma = 0 gives exactly
+  // the circular arch's angles).
+  auto corner = [&](int k, double r) -> Vec2 {
+    if (2 * k < n) return cl + polar(r, phi0 - k * dphi);
+    if (2 * k > n) return cr + polar(r, (phi0 - k * dphi) - 2 * gamma);
+    // Crown joint (n even): on the axis, vertical; with e = 0 the radial joint of the circle.
+    if (e == 0) return polar(r, phi0 - k * dphi);
+    return Vec2(0.0, std::sqrt(r * r - e * e));
+  };
+  Case c;
+  c.source = "pointed-arch";
+  c.name = "pointed arch";
+  auto support = [&](const std::string& id, int k) {
+    const Vec2 a = corner(k, ri), b = corner(k, re);
+    const double base = std::min(a.y(), b.y()) - t;
+    Block s;
+    s.id = id;
+    s.support = true;
+    s.depth = p.depth;
+    s.vertices = {a, b, Vec2(b.x(), base), Vec2(a.x(), base)};
+    make_ccw(s.vertices);
+    return s;
+  };
+  c.blocks.push_back(support("left", 0));
+  for (int k = 0; k < n; ++k) {
+    Block v;
+    v.id = "v";
+    v.id += std::to_string(k);
+    v.depth = p.depth;
+    v.density = p.density;
+    if (n % 2 == 1 && 2 * k + 1 == n && e > 0) {
+      // Keystone across the axis: extrados apex as a vertex, intrados as a chord (convexity).
+      v.vertices = {corner(k, ri), corner(k + 1, ri), corner(k + 1, re), Vec2(0.0, std::sqrt(re * re - e * e)),
+                    corner(k, re)};
+    } else {
+      v.vertices = {corner(k, ri), corner(k + 1, ri), corner(k + 1, re), corner(k, re)};
+    }
+    make_ccw(v.vertices);
+    c.blocks.push_back(v);
+  }
+  c.blocks.push_back(support("right", n));
+  c.motion.step = p.step;
+  c.motion.max_steps = p.max_steps;
+  if (p.spreading) {
+    SupportMotion m;
+    m.block = static_cast<int>(c.blocks.size()) - 1;
+    m.translation = Vec2(1, 0);
+    m.about = centroid(c.blocks.back().vertices);
+    c.motion.supports.push_back(m);
+  }
+  validate_geometry(c);
+  return c;
+}
+
+}  // namespace masonry
