@@ -1,0 +1,186 @@
+#include "contact.hpp"
+
+#include <box2d/b2_common.h>
+#include <box2d/b2_settings.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace masonry::dem {
+
+static_assert(kMaxPieceVertices == b2_maxPolygonVertices, "piece size must follow Box2D's polygon limit");
+
+namespace {
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Strictly convex or with collinear vertices allowed: collinear vertices are harmless to the
+// manifold (their edges just never become reference faces with a different normal).
+bool is_convex(const std::vector<Vec2>& p) {
+  const size_t n = p.size();
+  const double scale = 1e-12 * std::max(1.0, std::abs(signed_area(p)));
+  for (size_t i = 0; i < n; ++i)
+    if (cross(p[(i + 1) % n] - p[i], p[(i + 2) % n] - p[(i + 1) % n]) < -scale) return false;
+  return true;
+}
+
+bool point_in_triangle(const Vec2& q, const Vec2& a, const Vec2& b, const Vec2& c) {
+  return cross(b - a, q - a) >= 0 && cross(c - b, q - b) >= 0 && cross(a - c, q - c) >= 0;
+}
+
+std::vector<std::vector<Vec2>> triangulate(const std::vector<Vec2>& poly) {
+  std::vector<int> idx(poly.size());
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<int>(i);
+  std::vector<std::vector<Vec2>> tris;
+  size_t guard = 0;
+  while (idx.size() > 3) {
+    const size_t n = idx.size();
+    bool clipped = false;
+    for (size_t k = 0; k < n; ++k) {
+      const Vec2& a = poly[idx[(k + n - 1) % n]];
+      const Vec2& b = poly[idx[k]];
+      const Vec2& c = poly[idx[(k + 1) % n]];
+      if (cross(b - a, c - b) <= 0) continue;  // reflex or flat: not an ear
+      bool empty = true;
+      for (size_t m = 0; m < n && empty; ++m) {
+        if (m == k || m == (k + n - 1) % n || m == (k + 1) % n) continue;
+        const Vec2& q = poly[idx[m]];
+        if (q != a && q != b && q != c && point_in_triangle(q, a, b, c)) empty = false;
+      }
+      if (!empty) continue;
+      tris.push_back({a, b, c});
+      idx.erase(idx.begin() + static_cast<long>(k));
+      clipped = true;
+      break;
+    }
+    if (!clipped || ++guard > 100000) throw std::runtime_error("cannot split a block into convex pieces");
+  }
+  tris.push_back({poly[idx[0]], poly[idx[1]], poly[idx[2]]});
+  return tris;
+}
+
+// Union of two convex CCW polygons sharing the edge a->b of p (b->a of q), or empty if they
+// do not share an edge.
+std::vector<Vec2> merge_on_shared_edge(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
+  const size_t np = p.size(), nq = q.size();
+  for (size_t i = 0; i < np; ++i) {
+    const Vec2 &a = p[i], &b = p[(i + 1) % np];
+    for (size_t j = 0; j < nq; ++j) {
+      if (q[j] != b || q[(j + 1) % nq] != a) continue;
+      std::vector<Vec2> out;
+      for (size_t k = 0; k < np; ++k) out.push_back(p[(i + 1 + k) % np]);  // b ... a
+      for (size_t k = 2; k < nq; ++k) out.push_back(q[(j + k) % nq]);      // after a, before b
+      return out;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+std::vector<std::vector<Vec2>> convex_pieces(const std::vector<Vec2>& poly) {
+  if (poly.size() <= static_cast<size_t>(kMaxPieceVertices) && is_convex(poly)) return {poly};
+  std::vector<std::vector<Vec2>> pieces = triangulate(poly);
+  // Greedy Hertel-Mehlhorn style merging: few pieces means few contact pairs.
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (size_t i = 0; i < pieces.size() && !merged; ++i)
+      for (size_t j = i + 1; j < pieces.size() && !merged; ++j) {
+        std::vector<Vec2> u = merge_on_shared_edge(pieces[i], pieces[j]);
+        if (u.empty() || u.size() > static_cast<size_t>(kMaxPieceVertices) || !is_convex(u)) continue;
+        pieces[i] = std::move(u);
+        pieces.erase(pieces.begin() + static_cast<long>(j));
+        merged = true;
+      }
+  }
+  return pieces;
+}
+
+namespace {
+
+// Largest over the edges of 1 of the smallest signed distance of 2's vertices (b2FindMaxSeparation).
+double max_separation(int& edge, const Vec2* v1, const Vec2* n1, int c1, const Vec2* v2, int c2) {
+  double best = -INFINITY;
+  edge = 0;
+  for (int i = 0; i < c1; ++i) {
+    double si = INFINITY;
+    for (int j = 0; j < c2; ++j) si = std::min(si, n1[i].dot(v2[j] - v1[i]));
+    if (si > best) {
+      best = si;
+      edge = i;
+    }
+  }
+  return best;
+}
+
+struct ClipVertex {
+  Vec2 v;
+  int slot;
+};
+
+// Keeps the part of the segment with normal . x <= offset; a cut point inherits the slot of the
+// vertex it replaces, so slots name the ends of the incident edge whatever the clipping did.
+int clip_segment(ClipVertex out[2], const ClipVertex in[2], const Vec2& normal, double offset) {
+  int n = 0;
+  const double d0 = normal.dot(in[0].v) - offset, d1 = normal.dot(in[1].v) - offset;
+  if (d0 <= 0) out[n++] = in[0];
+  if (d1 <= 0) out[n++] = in[1];
+  if (d0 * d1 < 0) {
+    const double t = d0 / (d0 - d1);
+    out[n].v = in[0].v + t * (in[1].v - in[0].v);
+    out[n].slot = d0 > 0 ? in[0].slot : in[1].slot;
+    ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+bool collide(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, Manifold& m) {
+  m.count = 0;
+  int edge_a = 0, edge_b = 0;
+  const double sep_a = max_separation(edge_a, va, na, ca, vb, cb);
+  if (sep_a > 0) return false;
+  const double sep_b = max_separation(edge_b, vb, nb, cb, va, ca);
+  if (sep_b > 0) return false;
+  // Box2D's hysteresis: face A unless B is clearly better, so the choice does not flicker.
+  const double k_tol = 0.1 * b2_linearSlop;
+  const bool flip = sep_b > sep_a + k_tol;
+  const Vec2 *v1 = flip ? vb : va, *n1 = flip ? nb : na, *v2 = flip ? va : vb, *n2 = flip ? na : nb;
+  const int c1 = flip ? cb : ca, c2 = flip ? ca : cb, e1 = flip ? edge_b : edge_a;
+
+  const Vec2 normal = n1[e1];
+  int inc = 0;
+  double min_dot = INFINITY;
+  for (int i = 0; i < c2; ++i) {
+    const double d = normal.dot(n2[i]);
+    if (d < min_dot) {
+      min_dot = d;
+      inc = i;
+    }
+  }
+  const ClipVertex incident[2] = {{v2[inc], 0}, {v2[(inc + 1) % c2], 1}};
+  const Vec2 v11 = v1[e1], v12 = v1[(e1 + 1) % c1];
+  const Vec2 tangent = (v12 - v11).normalized();
+  ClipVertex c1p[2], c2p[2];
+  if (clip_segment(c1p, incident, -tangent, -tangent.dot(v11)) < 2) return false;
+  if (clip_segment(c2p, c1p, tangent, tangent.dot(v12)) < 2) return false;
+
+  m.normal = flip ? Vec2(-normal) : normal;
+  m.flip = flip;
+  m.ref_edge = e1;
+  m.inc_edge = inc;
+  m.clip_length = (c2p[0].v - c2p[1].v).norm();
+  const double front = normal.dot(v11);
+  for (int i = 0; i < 2; ++i) {
+    const double s = normal.dot(c2p[i].v) - front;
+    if (s > 0) continue;
+    ManifoldPoint& p = m.points[m.count++];
+    p.point = c2p[i].v - 0.5 * s * normal;
+    p.separation = s;
+    p.slot = c2p[i].slot;
+  }
+  return m.count > 0;
+}
+
+}  // namespace masonry::dem

@@ -1,0 +1,43 @@
+// Contact geometry of the DEM in double precision: convex decomposition of blocks and the
+// polygon-polygon manifold. The manifold is Box2D's b2CollidePolygons algorithm (separating axis
+// with a preferred reference face, incident edge, clipping to the reference face's side planes)
+// ported to double, because joint overlaps (1e-7..1e-6 m) are below float resolution at scene
+// coordinates (see shared/docs/dem-method.md, "Precision"). Units: m.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "case.hpp"
+
+namespace masonry::dem {
+
+// Box2D's limit on polygon vertices (b2_maxPolygonVertices); checked against box2d in contact.cpp.
+constexpr int kMaxPieceVertices = 8;
+
+// Splits a simple polygon (counter-clockwise) into convex pieces of at most kMaxPieceVertices
+// vertices each: the polygon itself when it already qualifies, else an ear-clipping triangulation
+// whose triangles are merged greedily while the union stays convex and small enough.
+std::vector<std::vector<Vec2>> convex_pieces(const std::vector<Vec2>& poly);
+
+struct ManifoldPoint {
+  Vec2 point{0, 0};         // midway between the two surfaces, world frame
+  double separation = 0.0;  // < 0: overlap
+  int slot = 0;             // which end of the clipped incident edge (0: its first vertex's side)
+};
+
+struct Manifold {
+  int count = 0;             // 0, 1 or 2 points with separation <= 0
+  Vec2 normal{0, 0};         // unit, from polygon A into polygon B
+  bool flip = false;         // the reference face belongs to B
+  int ref_edge = -1;         // reference edge index (in the reference polygon)
+  int inc_edge = -1;         // incident edge index (in the other polygon)
+  double clip_length = 0.0;  // length of the incident edge clipped to the reference face, m
+  std::array<ManifoldPoint, 2> points;
+};
+
+// Polygons as counter-clockwise world vertices with outward unit edge normals (edge i runs from
+// vertex i to vertex i+1). Returns false (count 0) when the polygons are apart.
+bool collide(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, Manifold& m);
+
+}  // namespace masonry::dem

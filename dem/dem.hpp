@@ -1,0 +1,109 @@
+// The rigid-block discrete-element model (DEM) that stands in for 3DEC (see
+// shared/docs/dem-method.md): rigid convex (or compound) blocks, Mohr-Coulomb joint springs at the
+// manifold points of Box2D-style polygon contacts, explicit central-difference integration with
+// local damping, and the paper's incremental loading protocol. SI units: m, kg, N, s, rad; the
+// friction angle alone is in degrees.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "case.hpp"
+#include "interfaces.hpp"
+#include "results.hpp"
+
+namespace masonry {
+
+struct DemSettings {
+  double young_modulus = 3.0e10;  // Pa
+  double poisson = 0.2;
+  std::optional<double> kn;       // Pa/m; default E / h_block, h_block = sqrt(mean free block area)
+  std::optional<double> ks;       // Pa/m; default G / h_block, G = E / (2 (1 + nu))
+  double stiffness_reduction = 1.0;  // kn and ks are divided by this
+  double friction_angle = 35.0;      // degrees; 90 means no slip limit
+  double damping = 0.8;              // local damping coefficient alpha in [0, 1)
+  // dt = timestep_factor * dt_crit, dt_crit = 2 / omega_bound (see DemModel::critical_dt);
+  // factors above 1 are refused.
+  double timestep_factor = 0.2;
+  double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight at equilibrium
+  double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
+  double hold_time = 3.0;               // model-time budget of a hold, s
+  double step = 0.001;                  // increment of d, m
+  int max_steps = 1000;
+  // Model time over which the supports travel one increment, s. They move at constant velocity
+  // except for smooth (half-cosine) speed ramps over `ramp_fraction` of that time at each end.
+  // A velocity that jumps from zero hits the structure with an elastic shock of v sqrt(k m): a
+  // fast move (0.02 s per 4 mm on the test arch) makes the springing joint slip and inflates the
+  // capacity (README.md). ramp_fraction = 0 is the paper's abrupt constant velocity.
+  double move_time = 0.2;
+  double ramp_fraction = 0.25;  // in [0, 0.5]
+  // A hold that moves some block farther than this from where the hold began, without settling,
+  // is a collapse; <= 0 means 2% of the scene size.
+  double collapse_drift = 0.0;
+  // A joint corner whose normal gap exceeds this is open, m; < 0 means the case's
+  // prd.contact_tolerance, so DEM and PRD call hinges alike.
+  double open_gap = -1.0;
+  static DemSettings from_case(const Case& c);
+};
+
+// One block's state for tests and diagnostics.
+struct DemBlockState {
+  Vec2 position{0, 0};  // centroid, m
+  double angle = 0.0;   // rotation since the start, rad
+  Vec2 velocity{0, 0};  // m/s (at the last half step)
+  double spin = 0.0;    // rad/s
+};
+
+// The simulator: build it from a case, then place the supports and cycle.
+class DemModel {
+ public:
+  // Throws std::runtime_error for settings it cannot run with (e.g. an unstable time step).
+  DemModel(const Case& c, const DemSettings& s);
+  ~DemModel();
+  DemModel(const DemModel&) = delete;
+  DemModel& operator=(const DemModel&) = delete;
+
+  double kn() const;           // normal joint stiffness used, Pa/m
+  double ks() const;           // shear joint stiffness used, Pa/m
+  // Bound on the critical time step: 2 / sqrt(2 max_b [(kn+ks) depth P_b / m_b + max(kn,ks)
+  // depth J_b / I_b]), P_b the perimeter and J_b = sum over edges of L (|p-c|^2 + |q-c|^2) / 2:
+  // every manifold point carries at most (its share of) the edge length, a block's stiffness is
+  // bounded by its whole perimeter in contact, and the 2 covers coupling to a neighbour.
+  double critical_dt() const;
+  double dt() const;           // timestep_factor * critical_dt
+  double time() const;         // model time, s
+  long long cycles() const;
+
+  // Places the prescribed supports at path parameter d (they move there during the next cycle).
+  void set_support_parameter(double d);
+  double support_parameter() const;
+  void cycle(long long n = 1);
+
+  double unbalanced_ratio() const;  // of the last cycle: max over free blocks of max(|F|,|M|/r)/W
+  double max_speed() const;         // max over free blocks of |v| + |omega| r (r: radius of gyration)
+  DemBlockState block(int b) const;
+  // Energies at the time of the last force evaluation, J: kinetic, gravity (relative to the
+  // start), elastic (joint springs), and the work done by the dead loads (relative to the start).
+  double kinetic_energy() const;
+  double gravity_energy() const;
+  double spring_energy() const;
+  double load_work() const;
+  int contact_points() const;   // manifold points in contact
+  double max_overlap() const;   // m
+  long long broadphase_rebuilds() const;
+
+  // The current state as a step record (poses, reactions, open corners, joint forces, energy).
+  StepRecord record(const std::vector<Interface>& joints) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> p_;
+};
+
+// The capacity run (loading protocol of dem-method.md). `on_step` is called after step 0 (the
+// initial configuration settled under gravity) and after every increment.
+RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(const RunResult&)>& on_step = {});
+
+}  // namespace masonry

@@ -1,0 +1,87 @@
+// `masonry dem CASE --out DIR`: results.json and steps.csv written, exit codes.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "case.hpp"
+#include "generators.hpp"
+
+namespace {
+
+using namespace masonry;
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Dir {
+  fs::path path;
+  Dir() {
+    path = fs::temp_directory_path() / ("masonry-dem-cli-" + std::to_string(::getpid()));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~Dir() { fs::remove_all(path); }
+};
+
+fs::path write_arch(const Dir& d) {
+  CircularArch p;
+  p.voussoirs = 8;
+  p.thickness = 0.2;
+  p.step = 0.01;
+  p.max_steps = 3;
+  Case c = circular_arch(p);
+  c.dem.stiffness_reduction = 10;
+  c.dem.hold_time = 0.3;
+  const fs::path f = d.path / "arch.json";
+  std::ofstream(f) << case_to_json(c);
+  return f;
+}
+
+int run(const std::string& args, const fs::path& err) {
+  const std::string cmd = std::string(MASONRY_EXE) + " dem " + args + " 2>" + err.string() + " >/dev/null";
+  const int rc = std::system(cmd.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+TEST(DemCli, WritesResultsAndProgress) {
+  Dir d;
+  const fs::path c = write_arch(d), out = d.path / "out", err = d.path / "err.txt";
+  ASSERT_EQ(run(c.string() + " --out " + out.string() + " --max-steps 2 --damping 0.7", err), 0) << slurp(err);
+  const auto j = nlohmann::json::parse(slurp(out / "results.json"));
+  EXPECT_EQ(j["method"], "dem");
+  EXPECT_EQ(j["stopped"], "max_steps");
+  EXPECT_EQ(j["steps"].size(), 3u);  // step 0 and two increments
+  EXPECT_NEAR(j["capacity"].get<double>(), 0.02, 1e-12);
+  EXPECT_GT(j["timing"]["cycles"].get<long long>(), 0);
+  EXPECT_GT(j["settings"]["dt"].get<double>(), 0);
+  EXPECT_EQ(j["settings"]["damping"].get<double>(), 0.7);
+  EXPECT_EQ(j["steps"][1]["reactions"].size(), 2u);
+  const std::string csv = slurp(out / "steps.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  const std::string progress = slurp(err);
+  EXPECT_NE(progress.find("step 2"), std::string::npos) << progress;
+  EXPECT_NE(progress.find("unbalanced"), std::string::npos) << progress;
+}
+
+TEST(DemCli, RefusesAnUnstableTimeStep) {
+  Dir d;
+  const fs::path c = write_arch(d), err = d.path / "err.txt";
+  EXPECT_NE(run(c.string() + " --out " + (d.path / "out").string() + " --timestep-factor 2", err), 0);
+  const std::string msg = slurp(err);
+  EXPECT_NE(msg.find("stability limit"), std::string::npos) << msg;
+  EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
+}
+
+}  // namespace

@@ -1,0 +1,145 @@
+// Contact geometry: the double-precision manifold against Box2D's b2CollidePolygons, convex
+// decomposition of blocks Box2D cannot take as one polygon, and a compound block at rest.
+#include <box2d/b2_collision.h>
+#include <box2d/b2_polygon_shape.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "contact.hpp"
+#include "dem.hpp"
+#include "util.hpp"
+
+namespace {
+
+using namespace masonry;
+
+struct Poly {
+  std::vector<Vec2> v, n;
+};
+
+Poly place(const std::vector<Vec2>& local, const Vec2& x, double th) {
+  Poly p;
+  const double c = std::cos(th), s = std::sin(th);
+  for (size_t i = 0; i < local.size(); ++i) {
+    const Vec2& a = local[i];
+    p.v.push_back(x + Vec2(c * a.x() - s * a.y(), s * a.x() + c * a.y()));
+  }
+  for (size_t i = 0; i < p.v.size(); ++i) {
+    const Vec2 e = p.v[(i + 1) % p.v.size()] - p.v[i];
+    p.n.push_back(Vec2(e.y(), -e.x()).normalized());
+  }
+  return p;
+}
+
+b2PolygonShape shape(const std::vector<Vec2>& local) {
+  b2Vec2 pts[8];
+  for (size_t i = 0; i < local.size(); ++i) pts[i].Set(static_cast<float>(local[i].x()), static_cast<float>(local[i].y()));
+  b2PolygonShape s;
+  s.Set(pts, static_cast<int32>(local.size()));
+  s.m_radius = 0;
+  return s;
+}
+
+TEST(DemGeometry, ManifoldMatchesBox2dWhereFloatSuffices) {
+  // Overlaps of millimetres near the origin, where float is accurate to ~1e-7 m.
+  const std::vector<Vec2> box = {Vec2(-0.2, -0.1), Vec2(0.2, -0.1), Vec2(0.2, 0.1), Vec2(-0.2, 0.1)};
+  const std::vector<Vec2> tri = {Vec2(-0.15, -0.1), Vec2(0.15, -0.1), Vec2(0.0, 0.15)};
+  struct Pose2 {
+    double x, y, th;
+  };
+  const Pose2 poses[] = {{0.05, 0.198, 0.0}, {0.1, 0.195, 0.05}, {-0.3, 0.19, -0.1}, {0.0, 0.18, 3.0}, {0.39, 0.0, 1.5}};
+  int compared = 0;
+  for (const Pose2& q : poses) {
+    const Poly A = place(box, Vec2(0, 0), 0), B = place(tri, Vec2(q.x, q.y), q.th);
+    dem::Manifold m;
+    dem::collide(A.v.data(), A.n.data(), 4, B.v.data(), B.n.data(), 3, m);
+    b2Manifold bm;
+    b2Transform xa, xb;
+    xa.SetIdentity();
+    xb.Set(b2Vec2(static_cast<float>(q.x), static_cast<float>(q.y)), static_cast<float>(q.th));
+    const b2PolygonShape sa = shape(box), sb = shape(tri);
+    b2CollidePolygons(&bm, &sa, xa, &sb, xb);
+    ASSERT_EQ(m.count, bm.pointCount) << "pose " << q.x << " " << q.y << " " << q.th;
+    if (m.count == 0) continue;
+    ++compared;
+    b2WorldManifold wm;
+    wm.Initialize(&bm, xa, 0, xb, 0);
+    EXPECT_NEAR(m.normal.x(), wm.normal.x, 1e-5);
+    EXPECT_NEAR(m.normal.y(), wm.normal.y, 1e-5);
+    EXPECT_EQ(m.flip, bm.type == b2Manifold::e_faceB);
+    for (int i = 0; i < m.count; ++i) {
+      // Box2D's world point is midway between the surfaces too (zero radii).
+      bool found = false;
+      for (int k = 0; k < bm.pointCount; ++k)
+        if (std::abs(m.points[i].point.x() - wm.points[k].x) < 1e-5 && std::abs(m.points[i].point.y() - wm.points[k].y) < 1e-5) {
+          found = true;
+          EXPECT_NEAR(m.points[i].separation, wm.separations[k], 1e-5);
+        }
+      EXPECT_TRUE(found) << "point " << i;
+    }
+  }
+  EXPECT_GE(compared, 4);
+}
+
+TEST(DemGeometry, JointOverlapOfAMicronFarFromTheOrigin) {
+  // Where float cannot resolve it (see dem-method.md): two boxes at (10, 20), overlap 1e-7 m.
+  const std::vector<Vec2> box = {Vec2(-0.2, -0.1), Vec2(0.2, -0.1), Vec2(0.2, 0.1), Vec2(-0.2, 0.1)};
+  const Poly A = place(box, Vec2(10, 20), 0), B = place(box, Vec2(10, 20.2 - 1e-7), 0);
+  dem::Manifold m;
+  ASSERT_TRUE(dem::collide(A.v.data(), A.n.data(), 4, B.v.data(), B.n.data(), 4, m));
+  ASSERT_EQ(m.count, 2);
+  for (int i = 0; i < 2; ++i) EXPECT_NEAR(m.points[i].separation, -1e-7, 1e-12);
+  EXPECT_NEAR(m.clip_length, 0.4, 1e-12);
+  EXPECT_NEAR(m.normal.y(), 1.0, 1e-15);
+}
+
+double area(const std::vector<std::vector<Vec2>>& pieces) {
+  double a = 0;
+  for (const auto& p : pieces) {
+    EXPECT_GT(signed_area(p), 0);
+    EXPECT_LE(p.size(), static_cast<size_t>(dem::kMaxPieceVertices));
+    a += signed_area(p);
+  }
+  return a;
+}
+
+TEST(DemGeometry, ConvexPieces) {
+  const std::vector<Vec2> L = {Vec2(0, 0), Vec2(0.6, 0), Vec2(0.6, 0.2), Vec2(0.2, 0.2), Vec2(0.2, 0.6), Vec2(0, 0.6)};
+  const auto pl = dem::convex_pieces(L);
+  EXPECT_GE(pl.size(), 2u);
+  EXPECT_NEAR(area(pl), signed_area(L), 1e-12);
+  std::vector<Vec2> circle;
+  for (int k = 0; k < 20; ++k) circle.push_back(Vec2(std::cos(k * M_PI / 10), std::sin(k * M_PI / 10)));
+  const auto pc = dem::convex_pieces(circle);
+  EXPECT_GE(pc.size(), 3u);
+  EXPECT_NEAR(area(pc), signed_area(circle), 1e-12);
+  const std::vector<Vec2> quad = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  EXPECT_EQ(dem::convex_pieces(quad).size(), 1u);
+}
+
+TEST(DemGeometry, CompoundBlockRestsWithItsWeight) {
+  // An L-shaped block (two convex pieces) on the slab: the reaction is its weight, applied at
+  // its centroid's abscissa.
+  Case c = test::slab_case();
+  Block b;
+  b.id = "L";
+  b.vertices = {Vec2(-0.3, 0), Vec2(0.3, 0), Vec2(0.3, 0.1), Vec2(-0.2, 0.1), Vec2(-0.2, 0.5), Vec2(-0.3, 0.5)};
+  b.density = 2000;
+  c.blocks.push_back(b);
+  c.dem.hold_time = 2.0;
+  const RunResult r = dem_run(c, DemSettings::from_case(c));
+  ASSERT_EQ(r.steps.size(), 1u);
+  const StepRecord& s = r.steps[0];
+  ASSERT_TRUE(s.extra.value("settled", false));
+  const double W = block_mass(b) * c.gravity;
+  EXPECT_NEAR(s.reactions[0].force.y(), W, 1e-3 * W);
+  EXPECT_NEAR(s.reactions[0].force.x(), 0, 1e-3 * W);
+  // Moment about the slab centroid (0, -0.05) of an upward force W at x = xc: W xc.
+  const double xc = centroid(b.vertices).x();
+  EXPECT_NEAR(s.reactions[0].moment, W * xc, 2e-3 * W * std::abs(xc));
+  ASSERT_EQ(s.forces.size(), 1u);
+  EXPECT_NEAR(s.forces[0].point.x(), xc, 1e-3);
+}
+
+}  // namespace

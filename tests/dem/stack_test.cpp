@@ -1,0 +1,84 @@
+// A stack of blocks at rest: reactions equal the weight, each joint's overlap is the weight above
+// it over kn * area, the unbalanced force ratio falls below tolerance, and a long hold does not
+// drift.
+#include <gtest/gtest.h>
+
+#include "dem.hpp"
+#include "util.hpp"
+
+namespace {
+
+using namespace masonry;
+
+Case stack_case() {
+  Case c = test::slab_case();
+  for (int k = 0; k < 3; ++k) {
+    std::string id = "b";
+    id += std::to_string(k);  // (not "b" + ...: GCC 12 warns falsely, PR105651)
+    c.blocks.push_back(test::rect(id, -0.2, 0.2 * k, 0.2, 0.2 * (k + 1), 2000, false));
+  }
+  c.dem.friction_angle = 35;
+  c.dem.hold_time = 2.0;
+  return c;
+}
+
+TEST(DemStack, ReactionsEqualWeightAndOverlapsMatchSprings) {
+  const Case c = stack_case();
+  DemSettings s = DemSettings::from_case(c);
+  const RunResult r = dem_run(c, s);
+  ASSERT_EQ(r.steps.size(), 1u);
+  const StepRecord& st = r.steps[0];
+  ASSERT_TRUE(st.extra.value("settled", false)) << "unbalanced " << st.extra.value("unbalanced_ratio", -1.0);
+  EXPECT_LT(st.extra.value("unbalanced_ratio", 1.0), s.equilibrium_tolerance);
+  EXPECT_EQ(r.stopped, "max_steps");
+  EXPECT_EQ(r.capacity, 0.0);
+
+  const double W = 2000 * 0.4 * 0.2 * 1.0 * c.gravity;  // one block
+  ASSERT_EQ(st.reactions.size(), 1u);
+  EXPECT_NEAR(st.reactions[0].force.y(), 3 * W, 1e-3 * W);
+  EXPECT_NEAR(st.reactions[0].force.x(), 0, 1e-3 * W);
+  EXPECT_NEAR(r.total_weight, 3 * W, 1e-9 * W);
+
+  // Joint k (from the ground up) carries the (3 - k) blocks above it: overlap (3 - k) W / (kn A).
+  const double kn = *c.dem.kn, A = 0.4 * 1.0;
+  double expected_drop = 0;
+  for (int k = 0; k < 3; ++k) {
+    expected_drop += (3 - k) * W / (kn * A);
+    const Pose& p = st.poses[1 + k];
+    EXPECT_NEAR(0.2 * k + 0.1 - p.y, expected_drop, 2e-3 * expected_drop) << "block " << k;
+    EXPECT_NEAR(p.x, 0, 1e-9);
+    EXPECT_NEAR(p.angle, 0, 1e-9);
+  }
+  // Joint resultants: normal = weight above, at the middle of the joint, no shear, no opening.
+  ASSERT_EQ(r.joints.size(), 3u);
+  ASSERT_EQ(st.forces.size(), 3u);
+  for (const JointForce& f : st.forces) {
+    const int above = 3 - f.joint;  // detect_interfaces orders by block pair: (ground,b0), (b0,b1), (b1,b2)
+    EXPECT_NEAR(f.normal, above * W, 1e-3 * W);
+    EXPECT_NEAR(f.shear, 0, 1e-6 * W);
+    EXPECT_NEAR(f.point.x(), 0, 1e-6);
+  }
+  EXPECT_TRUE(st.open_corners.empty());
+}
+
+TEST(DemStack, NoDriftOverALongHold) {
+  const Case c = stack_case();
+  const DemSettings s = DemSettings::from_case(c);
+  DemModel m(c, s);
+  long long n = 0;
+  while (!(m.unbalanced_ratio() < s.equilibrium_tolerance && m.max_speed() < s.velocity_tolerance)) {
+    m.cycle();
+    ASSERT_LT(++n, 1000000);
+  }
+  std::vector<DemBlockState> before;
+  for (int b = 0; b < 4; ++b) before.push_back(m.block(b));
+  const long long hold = static_cast<long long>(5.0 / m.dt());  // 5 s of model time
+  m.cycle(hold);
+  EXPECT_LT(m.unbalanced_ratio(), s.equilibrium_tolerance);
+  for (int b = 1; b < 4; ++b) {
+    EXPECT_NEAR((m.block(b).position - before[b].position).norm(), 0, 1e-8) << "block " << b;
+    EXPECT_NEAR(m.block(b).angle - before[b].angle, 0, 1e-8) << "block " << b;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,69 @@
+// A block on a support that tilts slowly: it slides when the tilt reaches phi if tan(phi) < b/h,
+// and topples at atan(b/h) otherwise; the capacity (the last tilt at which the block was found
+// at rest) lies within one increment below the closed-form angle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dem.hpp"
+#include "util.hpp"
+
+namespace {
+
+using namespace masonry;
+
+constexpr double kDeg = M_PI / 180;
+
+// Block b wide and h high on the slab; the slab turns about its centroid, 1 rad per m of d, so
+// d is the tilt in rad, increments of one degree.
+Case tilt_case(double b, double h, double phi_deg) {
+  Case c = test::slab_case();
+  c.blocks.push_back(test::rect("block", -b / 2, 0, b / 2, h, 2000, false));
+  SupportMotion m;
+  m.block = 0;
+  m.rotation = 1.0;
+  m.about = Vec2(0, -0.05);
+  c.motion.supports.push_back(m);
+  c.motion.step = 1.0 * kDeg;
+  c.motion.max_steps = 80;
+  c.dem.friction_angle = phi_deg;
+  c.dem.hold_time = 1.0;
+  return c;
+}
+
+RunResult run(const Case& c) {
+  DemSettings s = DemSettings::from_case(c);
+  // One degree per second: the support starts and stops abruptly (constant velocity), and a
+  // faster tilt would throw a block that is close to toppling over its corner.
+  s.move_time = 1.0;
+  s.collapse_drift = 0.02;   // m; the block is 0.2-0.4 m
+  return dem_run(c, s);
+}
+
+TEST(DemTilt, SlidesAtTheFrictionAngle) {
+  const double b = 0.4, h = 0.2, phi = 20.5;  // tan(phi) = 0.37 < b/h = 2
+  const RunResult r = run(tilt_case(b, h, phi));
+  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  const double cap = r.capacity / kDeg;
+  EXPECT_LE(cap, phi);
+  EXPECT_GT(cap, phi - 1.0);
+  // Sliding, not toppling: the block still lies flat on the slab (turned with it).
+  const StepRecord& last = r.steps.back();
+  const double tilt = last.d;
+  EXPECT_NEAR(last.poses[1].angle, tilt, 0.02);
+}
+
+TEST(DemTilt, ToppleAtAtanBOverH) {
+  const double b = 0.2, h = 0.4, phi = 45;  // tan(phi) = 1 > b/h = 0.5
+  const RunResult r = run(tilt_case(b, h, phi));
+  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  const double topple = std::atan(b / h) / kDeg;  // 26.57 degrees
+  const double cap = r.capacity / kDeg;
+  EXPECT_LE(cap, topple);
+  EXPECT_GT(cap, topple - 1.0);
+  // Toppling: the block has turned well past the slab.
+  const StepRecord& last = r.steps.back();
+  EXPECT_GT(std::abs(last.poses[1].angle - last.d), 0.05);
+}
+
+}  // namespace
