@@ -13,6 +13,20 @@ Vec2 polar(double r, double phi) { return Vec2(r * std::cos(phi), r * std::sin(p
 void make_ccw(std::vector<Vec2>& v) {
   if (signed_area(v) < 0) std::reverse(v.begin(), v.end());
 }
+
+// The last block is the right support; with `spreading` it moves outward (+x) per unit of d.
+void finish_arch(Case& c, bool spreading, double step, int max_steps) {
+  c.motion.step = step;
+  c.motion.max_steps = max_steps;
+  if (spreading) {
+    SupportMotion m;
+    m.block = static_cast<int>(c.blocks.size()) - 1;
+    m.translation = Vec2(1, 0);
+    m.about = centroid(c.blocks.back().vertices);
+    c.motion.supports.push_back(m);
+  }
+  validate_geometry(c);
+}
 }  // namespace
 
 Case circular_arch(const CircularArch& p) {
@@ -50,22 +64,9 @@ Case circular_arch(const CircularArch& p) {
     c.blocks.push_back(v);
   }
   c.blocks.push_back(support("right", phi0 - p.voussoirs * dphi));
-  c.motion.step = p.step;
-  c.motion.max_steps = p.max_steps;
-  if (p.spreading) {
-    SupportMotion m;
-    m.block = static_cast<int>(c.blocks.size()) - 1;
-    m.translation = Vec2(1, 0);
-    m.about = centroid(c.blocks.back().vertices);
-    c.motion.supports.push_back(m);
-  }
-  validate_geometry(c);
+  finish_arch(c, p.spreading, p.step, p.max_steps);
   return c;
 }
-
-}  // namespace masonry
-
-namespace masonry {
 
 Case pointed_arch(const PointedArch& p) {
   const double e = p.eccentricity, t = p.thickness;
@@ -126,16 +127,7 @@ Case pointed_arch(const PointedArch& p) {
     c.blocks.push_back(v);
   }
   c.blocks.push_back(support("right", n));
-  c.motion.step = p.step;
-  c.motion.max_steps = p.max_steps;
-  if (p.spreading) {
-    SupportMotion m;
-    m.block = static_cast<int>(c.blocks.size()) - 1;
-    m.translation = Vec2(1, 0);
-    m.about = centroid(c.blocks.back().vertices);
-    c.motion.supports.push_back(m);
-  }
-  validate_geometry(c);
+  finish_arch(c, p.spreading, p.step, p.max_steps);
   return c;
 }
 
