@@ -282,7 +282,6 @@ void read_forces(const Model& m, StepRecord& rec) {
     const Interface& jt = m.joints[k];
     double N = 0, T = 0;
     Vec2 moment_point(0, 0);
-    Vec2 force(0, 0);
     Vec2 n(0, 0);
     for (int corner = 0; corner < 2; ++corner) {
       const size_t e = 2 * k + corner;
@@ -295,7 +294,6 @@ void read_forces(const Model& m, StepRecord& rec) {
       T += ft;
       moment_point += fn * p;
       const Vec2 fk = fn * n + ft * perp(n);  // on block j
-      force += fk;
       // Reactions: the force the structure receives from the support, and its moment.
       for (int side = 0; side < 2; ++side) {
         const int b = side == 0 ? jt.i : jt.j;
