@@ -11,6 +11,8 @@ packages=(
   libcli11-dev                     # the command line
   libgtest-dev                     # tests
   libbenchmark-dev                 # benchmarks
+  chromium                         # compare tests: report.html in a headless browser
+  jq                               # the PRD report scripts under reports/
 )
 missing=()
 for p in "${packages[@]}"; do

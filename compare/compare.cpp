@@ -1,0 +1,563 @@
+#include "compare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace masonry {
+
+using ojson = nlohmann::ordered_json;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// JSON has no NaN: a missing number is null, never a made-up 0.
+ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
+
+std::string fmt(double x, int prec = 4) {
+  if (!std::isfinite(x)) return "n/a";
+  std::ostringstream o;
+  o.precision(prec);
+  o << x;
+  return o.str();
+}
+
+// Linear interpolation of y(x) at q on sorted x (clamped at the ends). At repeated x the later
+// record wins, which is the state after any jump at that d.
+double interp(const std::vector<double>& x, const std::vector<double>& y, double q) {
+  if (x.empty()) return kNaN;
+  if (q <= x.front()) return y.front();
+  if (q >= x.back()) return y.back();
+  const auto it = std::upper_bound(x.begin(), x.end(), q);
+  const size_t k = size_t(it - x.begin());
+  const double x0 = x[k - 1], x1 = x[k];
+  if (x1 <= x0) return y[k];
+  const double t = (q - x0) / (x1 - x0);
+  return y[k - 1] + t * (y[k] - y[k - 1]);
+}
+
+// The last stable record at or before d (records are in order of d).
+const StepRecord* record_at(const std::vector<const StepRecord*>& recs, double d) {
+  const StepRecord* best = recs.empty() ? nullptr : recs.front();
+  const double eps = 1e-9 * std::max(1.0, std::abs(d));
+  for (const StepRecord* s : recs)
+    if (s->d <= d + eps) best = s;
+  return best;
+}
+
+double record_step(const std::vector<const StepRecord*>& recs) {
+  return recs.size() >= 2 ? recs[1]->d - recs[0]->d : 0.0;
+}
+
+// Hinges as (unordered block pair, point) for matching across runs whose joint numbering may
+// differ: two hinges are the same when they join the same blocks at the same corner.
+bool same_hinges(const std::vector<Hinge>& a, const std::vector<Hinge>& b, const std::vector<int>* mirror, double xc,
+                 double tol) {
+  if (a.size() != b.size()) return false;
+  std::vector<bool> used(b.size(), false);
+  for (const Hinge& h : a) {
+    int i = h.i, j = h.j;
+    Vec2 p = h.point;
+    if (mirror) {
+      i = (*mirror)[i];
+      j = (*mirror)[j];
+      p.x() = 2 * xc - p.x();
+    }
+    bool found = false;
+    for (size_t k = 0; k < b.size() && !found; ++k) {
+      if (used[k]) continue;
+      const Hinge& g = b[k];
+      const bool pair = (g.i == i && g.j == j) || (g.i == j && g.j == i);
+      if (pair && (g.point - p).norm() <= tol) used[k] = found = true;
+    }
+    if (!found) return false;
+  }
+  return true;
+}
+
+// Whether `hs` has a hinge at the same blocks and corner as `h`.
+bool contains_hinge(const std::vector<Hinge>& hs, const Hinge& h) {
+  for (const Hinge& g : hs)
+    if (((g.i == h.i && g.j == h.j) || (g.i == h.j && g.j == h.i)) && (g.point - h.point).norm() <= 1e-9 * (1 + h.point.norm()))
+      return true;
+  return false;
+}
+
+void bbox(const Case& c, Vec2& lo, Vec2& hi) {
+  lo = Vec2(std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+  hi = -lo;
+  for (const Block& b : c.blocks)
+    for (const Vec2& v : b.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+}
+
+RunSummary summarise(const RunResult& r, const std::string& label, int min_state_records) {
+  RunSummary s;
+  s.method = r.method;
+  s.label = label.empty() ? (r.method == "prd" ? "PRD" : r.method == "dem" ? "DEM" : r.method) : label;
+  s.capacity = r.capacity;
+  s.collapsed = r.collapsed;
+  s.stopped = r.stopped;
+  s.step = record_step(stable_records(r));
+  s.time_s = r.timing.total_s;
+  s.changes = mechanism_changes(r, min_state_records);
+  return s;
+}
+
+ojson summary_json(const RunSummary& s) {
+  ojson j;
+  j["label"] = s.label;
+  j["method"] = s.method;
+  j["capacity"] = num(s.capacity);
+  j["collapsed"] = s.collapsed;
+  j["stopped"] = s.stopped;
+  j["step"] = num(s.step);
+  j["time_s"] = num(s.time_s);
+  ojson ch = ojson::array();
+  for (double d : s.changes) ch.push_back(num(d));
+  j["mechanism_changes"] = ch;
+  return j;
+}
+
+}  // namespace
+
+std::vector<const StepRecord*> stable_records(const RunResult& r) {
+  std::vector<const StepRecord*> out;
+  const double cap = r.capacity;
+  const double eps = 1e-9 * std::max(1.0, std::abs(cap));
+  for (const StepRecord& s : r.steps) {
+    if (!std::isfinite(s.d)) continue;
+    if (std::isfinite(cap) && s.d > cap + eps) continue;
+    if (!out.empty() && s.d < out.back()->d) continue;  // records run forward in d
+    out.push_back(&s);
+  }
+  return out;
+}
+
+std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord& s) {
+  std::map<int, std::vector<int>> open;  // joint -> open corners
+  for (const OpenCorner& o : s.open_corners) open[o.joint].push_back(o.corner);
+  std::vector<Hinge> out;
+  for (const auto& [joint, corners] : open) {
+    if (corners.size() != 1 || joint < 0 || joint >= int(r.joints.size())) continue;
+    const JointInfo& ji = r.joints[joint];
+    Hinge h;
+    h.joint = joint;
+    h.i = ji.i;
+    h.j = ji.j;
+    h.corner = 1 - corners[0];
+    h.point = h.corner == 0 ? ji.a : ji.b;
+    const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
+    h.label = id(ji.i) + "/" + id(ji.j) + ":" + (h.corner == 0 ? "A" : "B");
+    out.push_back(h);
+  }
+  return out;
+}
+
+std::vector<double> mechanism_changes(const RunResult& r, int min_state_records) {
+  const auto recs = stable_records(r);
+  // Runs of equal open-corner sets: (first record, length).
+  struct Run {
+    std::set<std::pair<int, int>> state;
+    size_t first, count;
+  };
+  std::vector<Run> runs;
+  for (size_t k = 0; k < recs.size(); ++k) {
+    std::set<std::pair<int, int>> st;
+    for (const OpenCorner& o : recs[k]->open_corners) st.insert({o.joint, o.corner});
+    if (!runs.empty() && runs.back().state == st)
+      ++runs.back().count;
+    else
+      runs.push_back({st, k, 1});
+  }
+  // Flicker: a short state between two others is folded into the one before; the first and the
+  // last state are always kept (the last one may be short because the run ends there).
+  std::vector<Run> kept;
+  for (size_t k = 0; k < runs.size(); ++k) {
+    const bool last = k + 1 == runs.size();
+    if (!kept.empty() && !last && int(runs[k].count) < min_state_records) {
+      kept.back().count += runs[k].count;
+      continue;
+    }
+    if (!kept.empty() && kept.back().state == runs[k].state) {
+      kept.back().count += runs[k].count;
+      continue;
+    }
+    kept.push_back(runs[k]);
+  }
+  std::vector<double> out;
+  for (size_t k = 1; k < kept.size(); ++k) out.push_back(recs[kept[k].first]->d);
+  return out;
+}
+
+std::vector<int> mirror_blocks(const Case& c) {
+  Vec2 lo, hi;
+  bbox(c, lo, hi);
+  const double xc = 0.5 * (lo.x() + hi.x());
+  const double tol = 1e-6 * std::max(1.0, scene_size(c));
+  std::vector<int> m(c.blocks.size(), -1);
+  for (size_t a = 0; a < c.blocks.size(); ++a) {
+    const Block& A = c.blocks[a];
+    for (size_t b = 0; b < c.blocks.size() && m[a] < 0; ++b) {
+      const Block& B = c.blocks[b];
+      if (A.support != B.support || A.vertices.size() != B.vertices.size()) continue;
+      bool all = true;
+      for (const Vec2& v : A.vertices) {
+        const Vec2 w(2 * xc - v.x(), v.y());
+        bool hit = false;
+        for (const Vec2& u : B.vertices) hit = hit || (u - w).norm() <= tol;
+        if (!hit) {
+          all = false;
+          break;
+        }
+      }
+      if (all) m[a] = int(b);
+    }
+    if (m[a] < 0) return {};
+  }
+  return m;
+}
+
+Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, const CompareOptions& o,
+                        const std::string& label_a, const std::string& label_b) {
+  Comparison k;
+  k.case_name = c.name;
+  k.total_weight = a.total_weight > 0 ? a.total_weight : b.total_weight;
+  k.a = summarise(a, label_a, o.min_state_records);
+  k.b = summarise(b, label_b, o.min_state_records);
+  if (k.a.label == k.b.label) {  // two runs of one method: keep them apart in every table
+    k.a.label += " (a)";
+    k.b.label += " (b)";
+  }
+  if (a.capacity != 0)
+    k.capacity_rel_diff = (b.capacity - a.capacity) / a.capacity;
+  else
+    k.capacity_rel_diff = b.capacity == 0 ? 0.0 : kNaN;
+  k.time_ratio = a.timing.total_s > 0 ? b.timing.total_s / a.timing.total_s : kNaN;
+
+  const auto ra = stable_records(a), rb = stable_records(b);
+  k.d_max = std::min(std::isfinite(a.capacity) ? a.capacity : 0.0, std::isfinite(b.capacity) ? b.capacity : 0.0);
+  k.d_max = std::max(k.d_max, 0.0);
+
+  // Common grid: every record of either run inside [0, d_max], so neither run's jumps are
+  // smoothed away by a coarser grid; points closer than a billionth of the range are one.
+  std::vector<double> grid;
+  for (const auto* recs : {&ra, &rb})
+    for (const StepRecord* s : *recs)
+      if (s->d >= 0 && s->d <= k.d_max * (1 + 1e-12) + 1e-15) grid.push_back(std::min(s->d, k.d_max));
+  std::sort(grid.begin(), grid.end());
+  const double merge = 1e-9 * std::max(k.d_max, 1e-9);
+  for (double x : grid)
+    if (k.d.empty() || x - k.d.back() > merge) k.d.push_back(x);
+
+  // Thrust curves, support by support (matched by id), over the total weight.
+  const double W = k.total_weight > 0 ? k.total_weight : 1.0;
+  std::vector<std::string> supports;
+  if (!ra.empty())
+    for (const Reaction& x : ra.front()->reactions) supports.push_back(x.support);
+  double sum2 = 0.0, where_diff = -1.0;
+  size_t n2 = 0;
+  const auto series = [&](const std::vector<const StepRecord*>& recs, const std::string& id, int comp,
+                          std::vector<double>& xs, std::vector<double>& ys) {
+    for (const StepRecord* s : recs)
+      for (const Reaction& x : s->reactions)
+        if (x.support == id) {
+          xs.push_back(s->d);
+          ys.push_back((comp == 0 ? x.force.x() : x.force.y()) / W);
+        }
+  };
+  for (const std::string& id : supports) {
+    SupportCurve sc;
+    sc.support = id;
+    for (int comp = 0; comp < 2; ++comp) {
+      std::vector<double> xa, ya, xb, yb;
+      series(ra, id, comp, xa, ya);
+      series(rb, id, comp, xb, yb);
+      auto& outa = comp == 0 ? sc.h_a : sc.v_a;
+      auto& outb = comp == 0 ? sc.h_b : sc.v_b;
+      for (double q : k.d) {
+        const double va = interp(xa, ya, q), vb = interp(xb, yb, q);
+        outa.push_back(va);
+        outb.push_back(vb);
+        if (std::isfinite(va) && std::isfinite(vb)) {
+          const double diff = std::abs(vb - va);
+          sc.max_diff = std::max(sc.max_diff, diff);
+          if (diff > where_diff) {
+            where_diff = diff;
+            k.thrust_max_d = q;
+            k.thrust_max_where = (comp == 0 ? "H of " : "V of ") + id;
+          }
+          sum2 += diff * diff;
+          ++n2;
+        } else {
+          sc.max_diff = kNaN;  // a support missing from one run: the curves cannot agree
+        }
+      }
+    }
+    k.thrust_max_diff = std::isnan(sc.max_diff) || std::isnan(k.thrust_max_diff) ? kNaN : std::max(k.thrust_max_diff, sc.max_diff);
+    k.supports.push_back(std::move(sc));
+  }
+  k.thrust_rms_diff = n2 ? std::sqrt(sum2 / double(n2)) : kNaN;
+  if (k.supports.empty() || k.d.empty()) k.thrust_max_diff = kNaN;
+
+  // Hinges at a few common d.
+  const std::vector<int> mirror = mirror_blocks(c);
+  k.symmetric = !mirror.empty();
+  Vec2 lo, hi;
+  bbox(c, lo, hi);
+  const double xc = 0.5 * (lo.x() + hi.x());
+  const double tol = 1e-6 * std::max(1.0, scene_size(c));
+  if (!ra.empty() && !rb.empty()) {
+    std::set<double> done;
+    for (double f : o.hinge_fractions) {
+      HingeCheck h;
+      h.d = f * k.d_max;
+      const StepRecord* sa = record_at(ra, h.d);
+      const StepRecord* sb = record_at(rb, h.d);
+      h.d_a = sa->d;
+      h.d_b = sb->d;
+      if (!done.insert(h.d).second) continue;
+      h.a = hinges_of(c, a, *sa);
+      h.b = hinges_of(c, b, *sb);
+      h.match = same_hinges(h.a, h.b, nullptr, xc, tol);
+      h.mirror = !h.match && k.symmetric && same_hinges(h.a, h.b, &mirror, xc, tol);
+      k.hinges.push_back(std::move(h));
+    }
+  }
+  return k;
+}
+
+ojson to_json(const Comparison& k) {
+  ojson j;
+  j["case"] = k.case_name;
+  j["a"] = summary_json(k.a);
+  j["b"] = summary_json(k.b);
+  j["total_weight"] = num(k.total_weight);
+  j["capacity"] = {{"a", num(k.a.capacity)}, {"b", num(k.b.capacity)}, {"relative_difference", num(k.capacity_rel_diff)}};
+  ojson t;
+  t["common_range"] = ojson::array({0.0, num(k.d_max)});
+  t["max_difference"] = num(k.thrust_max_diff);
+  t["max_difference_at"] = {{"d", num(k.thrust_max_d)}, {"component", k.thrust_max_where}};
+  t["rms_difference"] = num(k.thrust_rms_diff);
+  ojson d = ojson::array();
+  for (double x : k.d) d.push_back(num(x));
+  t["d"] = d;
+  ojson sup = ojson::array();
+  const auto arr = [](const std::vector<double>& v) {
+    ojson a = ojson::array();
+    for (double x : v) a.push_back(num(x));
+    return a;
+  };
+  for (const SupportCurve& s : k.supports)
+    sup.push_back({{"support", s.support},
+                   {"max_difference", num(s.max_diff)},
+                   {"H_a", arr(s.h_a)},
+                   {"V_a", arr(s.v_a)},
+                   {"H_b", arr(s.h_b)},
+                   {"V_b", arr(s.v_b)}});
+  t["supports"] = sup;
+  j["thrust"] = t;
+  ojson hc = ojson::array();
+  for (const HingeCheck& h : k.hinges) {
+    ojson ha = ojson::array(), hb = ojson::array();
+    for (const Hinge& x : h.a) ha.push_back(x.label);
+    for (const Hinge& x : h.b) hb.push_back(x.label);
+    hc.push_back({{"d", num(h.d)},
+                  {"d_a", num(h.d_a)},
+                  {"d_b", num(h.d_b)},
+                  {"a", ha},
+                  {"b", hb},
+                  {"match", h.match},
+                  {"mirror", h.mirror}});
+  }
+  j["hinges"] = {{"symmetric", k.symmetric}, {"checks", hc}};
+  j["timing"] = {{"a_s", num(k.a.time_s)}, {"b_s", num(k.b.time_s)}, {"ratio", num(k.time_ratio)}};
+  return j;
+}
+
+std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances& t) {
+  std::vector<std::string> out;
+  if (t.capacity) {
+    const double r = k.capacity_rel_diff;
+    if (!std::isfinite(r) || std::abs(r) > *t.capacity)
+      out.push_back("capacity: " + k.a.label + " " + fmt(k.a.capacity) + " m, " + k.b.label + " " + fmt(k.b.capacity) +
+                    " m: relative difference " + fmt(std::abs(r) * 100, 3) + "% > limit " + fmt(*t.capacity * 100, 3) + "%");
+  }
+  if (t.thrust) {
+    const double m = k.thrust_max_diff;
+    if (!std::isfinite(m) || m > *t.thrust)
+      out.push_back("thrust: largest support reaction difference " + fmt(m, 3) + " W (" + k.thrust_max_where + " at d = " +
+                    fmt(k.thrust_max_d) + " m) > limit " + fmt(*t.thrust, 3) + " W");
+  }
+  if (t.hinges) {
+    if (k.hinges.empty()) out.push_back("hinges: no common range to compare hinge locations on");
+    for (const HingeCheck& h : k.hinges) {
+      if (h.ok()) continue;
+      // Name only the hinges that differ: a cathedral has a dozen, most of them shared.
+      std::string la, lb;
+      for (const Hinge& x : h.a)
+        if (!contains_hinge(h.b, x)) la += (la.empty() ? "" : ", ") + x.label;
+      for (const Hinge& x : h.b)
+        if (!contains_hinge(h.a, x)) lb += (lb.empty() ? "" : ", ") + x.label;
+      out.push_back("hinges: at d = " + fmt(h.d) + " m only " + k.a.label + " has {" + la + "}, only " + k.b.label + " has {" + lb +
+                    "}" + (k.symmetric ? " (not mirror images either)" : ""));
+    }
+  }
+  return out;
+}
+
+Tolerances parse_tolerances(const std::string& text, const std::string& source) {
+  ojson j;
+  try {
+    j = ojson::parse(text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(source + ": not JSON: " + e.what());
+  }
+  if (!j.is_object()) throw std::runtime_error(source + ": expected an object like {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true}");
+  Tolerances t;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& key = it.key();
+    const ojson& v = it.value();
+    if (key == "capacity" || key == "thrust") {
+      if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
+        throw std::runtime_error(source + ": \"" + key + "\" must be a non-negative number");
+      (key == "capacity" ? t.capacity : t.thrust) = v.get<double>();
+    } else if (key == "hinges") {
+      if (!v.is_boolean()) throw std::runtime_error(source + ": \"hinges\" must be true or false");
+      t.hinges = v.get<bool>();
+    } else if (key == "comment" || key == "description") {
+      // free text for people
+    } else {
+      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, thrust, hinges, comment)");
+    }
+  }
+  return t;
+}
+
+namespace {
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot read");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+Tolerances load_tolerances(const std::string& path) { return parse_tolerances(read_text(path), path); }
+
+RunResult parse_results(const std::string& text, const Case& c, const std::string& source) {
+  ojson j;
+  try {
+    j = ojson::parse(text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(source + ": not JSON: " + e.what());
+  }
+  const auto fail = [&](const std::string& what) { return std::runtime_error(source + ": " + what); };
+  const auto dbl = [&](const ojson& v, const std::string& field) -> double {
+    if (v.is_null()) return kNaN;
+    if (!v.is_number()) throw fail(field + ": expected a number");
+    return v.get<double>();
+  };
+  const auto vec = [&](const ojson& v, const std::string& field) -> Vec2 {
+    if (!v.is_array() || v.size() != 2) throw fail(field + ": expected [x, y]");
+    return Vec2(dbl(v[0], field), dbl(v[1], field));
+  };
+  const auto block = [&](const ojson& v, const std::string& field) -> int {
+    if (!v.is_string()) throw fail(field + ": expected a block id");
+    const int b = c.block_index(v.get<std::string>());
+    if (b < 0) throw fail(field + ": block \"" + v.get<std::string>() + "\" is not in case \"" + c.name + "\"");
+    return b;
+  };
+  try {
+    if (j.value("format", "") != "masonry-results/1") throw fail("format: expected \"masonry-results/1\"");
+    RunResult r;
+    r.method = j.at("method").get<std::string>();
+    r.case_name = j.at("case").get<std::string>();
+    r.capacity = dbl(j.at("capacity"), "capacity");
+    r.stable_steps = j.value("stable_steps", 0);
+    r.collapsed = j.value("collapsed", false);
+    r.stopped = j.value("stopped", "");
+    r.message = j.value("message", "");
+    r.total_weight = dbl(j.at("total_weight"), "total_weight");
+    if (j.contains("settings")) r.settings = j["settings"];
+    if (j.contains("timing")) {
+      const ojson& t = j["timing"];
+      r.timing.total_s = t.contains("total_s") ? dbl(t["total_s"], "timing.total_s") : 0.0;
+      r.timing.lp_s = t.contains("lp_s") ? dbl(t["lp_s"], "timing.lp_s") : 0.0;
+      r.timing.lp_solves = t.value("lp_solves", 0LL);
+      r.timing.cycles = t.value("cycles", 0LL);
+    }
+    const ojson& blocks = j.at("blocks");
+    if (blocks.size() != c.blocks.size()) throw fail("blocks: " + std::to_string(blocks.size()) + " blocks, the case has " + std::to_string(c.blocks.size()));
+    for (size_t b = 0; b < blocks.size(); ++b)
+      if (blocks[b].at("id").get<std::string>() != c.blocks[b].id)
+        throw fail("blocks[" + std::to_string(b) + "].id: not the case's block \"" + c.blocks[b].id + "\"");
+    for (const ojson& jj : j.at("joints")) {
+      JointInfo ji;
+      ji.i = block(jj.at("blocks").at(0), "joints[].blocks");
+      ji.j = block(jj.at("blocks").at(1), "joints[].blocks");
+      ji.a = vec(jj.at("a"), "joints[].a");
+      ji.b = vec(jj.at("b"), "joints[].b");
+      r.joints.push_back(ji);
+    }
+    const int nj = int(r.joints.size());
+    static const std::set<std::string> known{"step", "d", "energy", "open_corners", "cracked", "reactions", "poses", "forces"};
+    for (const ojson& js : j.at("steps")) {
+      StepRecord s;
+      s.index = js.at("step").get<int>();
+      s.d = dbl(js.at("d"), "steps[].d");
+      s.energy = dbl(js.value("energy", ojson(nullptr)), "steps[].energy");
+      for (const ojson& o : js.at("open_corners")) {
+        OpenCorner oc;
+        oc.joint = o.at("joint").get<int>();
+        if (oc.joint < 0 || oc.joint >= nj) throw fail("steps[" + std::to_string(s.index) + "].open_corners: joint out of range");
+        oc.corner = o.at("corner").get<std::string>() == "B" ? 1 : 0;
+        oc.gap = dbl(o.value("gap", ojson(nullptr)), "open_corners[].gap");
+        s.open_corners.push_back(oc);
+      }
+      s.cracked = js.value("cracked", std::vector<int>{});
+      for (const ojson& x : js.at("reactions")) {
+        Reaction re;
+        re.support = x.at("support").get<std::string>();
+        re.force = vec(x.at("force"), "reactions[].force");
+        re.moment = dbl(x.value("moment", ojson(nullptr)), "reactions[].moment");
+        s.reactions.push_back(re);
+      }
+      for (const ojson& p : js.at("poses")) {
+        if (!p.is_array() || p.size() != 3) throw fail("steps[].poses: expected [x, y, angle]");
+        s.poses.push_back({dbl(p[0], "poses"), dbl(p[1], "poses"), dbl(p[2], "poses")});
+      }
+      if (!s.poses.empty() && s.poses.size() != c.blocks.size())
+        throw fail("steps[" + std::to_string(s.index) + "].poses: one per block expected");
+      for (const ojson& f : js.at("forces")) {
+        JointForce jf;
+        jf.joint = f.at("joint").get<int>();
+        if (jf.joint < 0 || jf.joint >= nj) throw fail("steps[" + std::to_string(s.index) + "].forces: joint out of range");
+        jf.normal = dbl(f.at("normal"), "forces[].normal");
+        jf.shear = dbl(f.value("shear", ojson(0.0)), "forces[].shear");
+        jf.point = vec(f.at("point"), "forces[].point");
+        jf.n = vec(f.at("n"), "forces[].n");
+        s.forces.push_back(jf);
+      }
+      for (auto it = js.begin(); it != js.end(); ++it)
+        if (!known.count(it.key())) s.extra[it.key()] = it.value();
+      r.steps.push_back(std::move(s));
+    }
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    throw fail(std::string("malformed results: ") + e.what());
+  }
+}
+
+RunResult load_results(const std::string& path, const Case& c) { return parse_results(read_text(path), c, path); }
+
+}  // namespace masonry

@@ -1,0 +1,115 @@
+// PRD against DEM (or any two runs of one case): capacities, thrust curves, hinges, mechanism
+// changes and run times, in numbers (compare_runs, to_json), against limits for CI
+// (check_tolerances) and as reports people read (report.hpp). Reads RunResults only: it never
+// calls a solver, and solvers never call it.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "case.hpp"
+#include "results.hpp"
+
+namespace masonry {
+
+// Limits for CI. Absent limits are not checked.
+struct Tolerances {
+  std::optional<double> capacity;  // largest |cap_b - cap_a| / |cap_a|
+  std::optional<double> thrust;    // largest |reaction component difference| / total weight
+  bool hinges = false;             // hinge locations must match (or mirror-match) at every check
+};
+// Parses {"capacity": 0.05, "thrust": 0.10, "hinges": true}; unknown keys and wrong types throw
+// std::runtime_error naming the file and the key.
+Tolerances parse_tolerances(const std::string& text, const std::string& source);
+Tolerances load_tolerances(const std::string& path);
+
+// A hinge: a joint with exactly one open corner; it turns about the closed one.
+struct Hinge {
+  int joint = -1;        // index into the run's joints
+  int i = -1, j = -1;    // the joint's blocks
+  int corner = 0;        // the closed corner: 0 = A, 1 = B
+  std::string label;     // "v3/v4 A" (block ids: case text, escape before display)
+  Vec2 point{0, 0};      // the closed corner, initial configuration
+};
+
+struct HingeCheck {
+  double d = 0.0;              // requested d, m
+  double d_a = 0.0, d_b = 0.0; // the records used (the last record at or before d)
+  std::vector<Hinge> a, b;
+  bool match = false;          // same hinges
+  bool mirror = false;         // b's hinges are the mirror image of a's (symmetric scenes only)
+  bool ok() const { return match || mirror; }
+};
+
+// Horizontal (H = Fx / W) and vertical (V = Fy / W) reaction of one support against d, for both
+// runs, on the common d grid.
+struct SupportCurve {
+  std::string support;  // block id
+  std::vector<double> h_a, v_a, h_b, v_b;
+  double max_diff = 0.0;  // largest |difference| of either component
+};
+
+struct RunSummary {
+  std::string label;       // "PRD", "DEM phi=35", ...
+  std::string method;      // "prd" or "dem"
+  double capacity = 0.0;   // m
+  bool collapsed = false;
+  std::string stopped;
+  double step = 0.0;       // m, the run's increment (from the records)
+  double time_s = 0.0;     // run time without I/O
+  std::vector<double> changes;  // d (m) where the mechanism changes
+};
+
+struct Comparison {
+  std::string case_name;
+  double total_weight = 0.0;  // N (of run a)
+  RunSummary a, b;
+  double capacity_rel_diff = 0.0;  // (cap_b - cap_a) / cap_a; NaN if cap_a == 0 and cap_b != 0
+  double d_max = 0.0;              // common range [0, d_max], d_max = min of the capacities
+  std::vector<double> d;           // common grid: the union of both runs' record d in the range
+  std::vector<SupportCurve> supports;
+  double thrust_max_diff = 0.0;    // largest over supports and components, / W
+  double thrust_max_d = 0.0;       // m, where it occurs
+  std::string thrust_max_where;    // "H of left" (support id: case text)
+  double thrust_rms_diff = 0.0;    // root-mean-square over supports, components and grid points
+  bool symmetric = false;          // the block geometry is its own mirror image about x = xc
+  std::vector<HingeCheck> hinges;
+  double time_ratio = 0.0;         // time_b / time_a (NaN when time_a is 0)
+};
+
+struct CompareOptions {
+  // Fractions of the common range at which hinge locations are compared.
+  std::vector<double> hinge_fractions{0.1, 0.25, 0.5, 0.75, 1.0};
+  // A mechanism state (set of open corners) held for fewer consecutive records than this is
+  // flicker: it is merged into the state before it, so the change list shows what a reader
+  // would call a change of mechanism. 1 keeps every change.
+  int min_state_records = 2;
+};
+
+// Both runs must come from `c` (same blocks, in order). Labels default to the method names.
+Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, const CompareOptions& o = {},
+                        const std::string& label_a = "", const std::string& label_b = "");
+
+// The stable records of a run: those with d <= capacity (the collapse record is left out).
+std::vector<const StepRecord*> stable_records(const RunResult& r);
+// Hinges of one record (joint with exactly one open corner), sorted by joint.
+std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord& s);
+// d (m) where the set of open corners changes (see CompareOptions::min_state_records).
+std::vector<double> mechanism_changes(const RunResult& r, int min_state_records = 2);
+// Block index -> index of its mirror image about the vertical line through the scene's centre,
+// or empty when some block has no mirror image (matched by vertices and support flag).
+std::vector<int> mirror_blocks(const Case& c);
+
+// comparison.json content for one comparison (NaN and infinities written as null).
+nlohmann::ordered_json to_json(const Comparison& k);
+// Violated limits, one readable line each; empty when every limit holds.
+std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances& t);
+
+// Reads a results.json (masonry-results/1) written for case `c` back into a RunResult; throws
+// std::runtime_error naming the file and field for anything that does not fit the case.
+RunResult parse_results(const std::string& text, const Case& c, const std::string& source);
+RunResult load_results(const std::string& path, const Case& c);
+
+}  // namespace masonry

@@ -1,0 +1,54 @@
+// Reports of a comparison: comparison.json (numbers), report.md (readable on a code-hosting
+// site, figures as SVG files beside it) and report.html (one self-contained file: inline SVG,
+// inline script, no network; a slider steps through d).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "compare.hpp"
+
+namespace masonry {
+
+struct ReportRun {
+  std::string label;               // "PRD", "DEM phi=35 deg"
+  const RunResult* run = nullptr;
+  std::string dir;                 // its results directory, relative to the report (may be empty)
+};
+
+// runs[0] is the reference; comparisons[k] compares runs[0] with runs[k + 1].
+struct Report {
+  const Case* c = nullptr;
+  std::vector<ReportRun> runs;
+  std::vector<Comparison> comparisons;
+  bool tolerances_checked = false;
+  Tolerances tolerances;
+  std::vector<std::vector<std::string>> violations;  // per comparison
+  std::string command;  // how the report was made (shown verbatim, escaped)
+  int frames = 0;       // slider positions in report.html (0: chosen from the scene size)
+};
+
+// Builds the comparisons (and, with `t`, the tolerance checks) of runs[0] against the others.
+Report make_report(const Case& c, const std::vector<ReportRun>& runs, const Tolerances* t = nullptr,
+                   const CompareOptions& o = {});
+
+struct Figure {
+  std::string file;     // relative path, e.g. "figures/thrust-1.svg"
+  std::string svg;
+  std::string caption;  // plain text
+};
+std::vector<Figure> report_figures(const Report& r);
+
+// comparison.json: {"format", "case", "runs", "comparisons": [to_json(k) + "tolerances"]}.
+nlohmann::ordered_json report_json(const Report& r);
+std::string report_markdown(const Report& r, const std::vector<Figure>& figures);
+// `frames`: how many steps the slider offers (0: chosen from the scene size).
+std::string report_html(const Report& r, int frames = 0);
+// Writes DIR/comparison.json, DIR/report.md, DIR/report.html and DIR/figures/*.svg.
+void write_report(const std::string& dir, const Report& r);
+
+// Text for Markdown: HTML special characters as entities and Markdown punctuation escaped, so a
+// case name can neither inject markup nor break a table.
+std::string md_escape(const std::string& s);
+
+}  // namespace masonry

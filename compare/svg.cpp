@@ -1,0 +1,480 @@
+#include "svg.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace masonry {
+
+namespace {
+
+// Method colours and support colours (colour-blind safe palette, Okabe-Ito).
+const char* kSupportColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"};
+const char* kForce = "#1f4fbf";
+const char* kThrustLine = "#c0392b";
+const char* kReaction = "#1a7f37";
+const char* kHinge = "#d62728";
+
+std::string f1(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f", std::isfinite(x) ? x : 0.0);
+  return b;
+}
+std::string fg(double x, int prec = 3) {
+  if (!std::isfinite(x)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.*g", prec, x);
+  return b;
+}
+// kN with a sensible number of digits and no exponent: 5.77, 577, 19350.
+std::string kn(double newton) {
+  if (!std::isfinite(newton)) return "n/a";
+  const double k = newton / 1000;
+  char b[32];
+  std::snprintf(b, sizeof b, std::abs(k) >= 100 ? "%.0f" : std::abs(k) >= 10 ? "%.1f" : "%.3g", k);
+  return b;
+}
+std::string mm(double m) {
+  if (!std::isfinite(m)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.0f mm", m * 1000);
+  return b;
+}
+
+// Current position of a material point of block b (initial coordinates) at a record.
+struct Placer {
+  const Case& c;
+  const StepRecord& s;
+  std::vector<Vec2> c0;  // initial centroids
+  Placer(const Case& cc, const StepRecord& ss) : c(cc), s(ss) {
+    for (const Block& b : c.blocks) c0.push_back(centroid(b.vertices));
+  }
+  Vec2 at(int b, const Vec2& p) const {
+    if (b < 0 || b >= int(s.poses.size())) return p;
+    const Pose& q = s.poses[b];
+    const double co = std::cos(q.angle), si = std::sin(q.angle);
+    const Vec2 r = p - c0[b];
+    return Vec2(q.x + co * r.x() - si * r.y(), q.y + si * r.x() + co * r.y());
+  }
+};
+
+// World -> pixel mapping of one panel.
+struct Map {
+  double ox, oy, s, x0, y1;
+  double X(double x) const { return ox + (x - x0) * s; }
+  double Y(double y) const { return oy + (y1 - y) * s; }
+  std::string P(const Vec2& p) const { return f1(X(p.x())) + "," + f1(Y(p.y())); }
+};
+
+std::string arrow_defs(const std::string& id) {
+  std::string s = "<defs><marker id=\"";
+  s += id;
+  s += "arr\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"6\" markerHeight=\"6\" "
+       "orient=\"auto-start-reverse\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"";
+  s += kReaction;
+  s += "\"/></marker><marker id=\"";
+  s += id;
+  s += "mot\" viewBox=\"0 0 10 10\" refX=\"8\" refY=\"5\" markerWidth=\"5\" markerHeight=\"5\" orient=\"auto\">"
+       "<path d=\"M0,0 L10,5 L0,10 z\" fill=\"#555\"/></marker></defs>\n";
+  return s;
+}
+
+// Reaction of a support and where to draw it: the normal-weighted centre of its joints'
+// pressure points (where the structure actually bears on it).
+bool reaction_point(const RunResult& r, const StepRecord& s, int support, Vec2& p) {
+  double w = 0;
+  Vec2 acc(0, 0);
+  for (const JointForce& f : s.forces) {
+    if (f.joint < 0 || f.joint >= int(r.joints.size())) continue;
+    const JointInfo& j = r.joints[f.joint];
+    if (j.i != support && j.j != support) continue;
+    if (!std::isfinite(f.normal) || f.normal <= 0) continue;
+    acc += f.normal * f.point;
+    w += f.normal;
+  }
+  if (w <= 0) return false;
+  p = acc / w;
+  return true;
+}
+
+void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const DrawFrame& f, const Map& m, double width,
+                const std::string& id) {
+  o << "<text x=\"" << f1(m.ox + width / 2) << "\" y=\"" << f1(m.oy - 24) << "\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">"
+    << xml_escape(pn.title) << "</text>\n<text x=\"" << f1(m.ox + width / 2) << "\" y=\"" << f1(m.oy - 7)
+    << "\" text-anchor=\"middle\" font-size=\"13\">" << xml_escape(pn.subtitle) << "</text>\n";
+  if (!pn.run || !pn.record || pn.record->poses.size() != c.blocks.size()) return;
+  const RunResult& r = *pn.run;
+  const StepRecord& s = *pn.record;
+  const Placer pl(c, s);
+  // Blocks.
+  o << "<g stroke=\"#6b6b6b\" stroke-width=\"0.7\" stroke-linejoin=\"round\">\n";
+  for (size_t b = 0; b < c.blocks.size(); ++b) {
+    const Block& B = c.blocks[b];
+    o << "<polygon fill=\"" << (B.support ? "url(#" + id + "hatch)" : std::string("#eadfca")) << "\" points=\"";
+    for (const Vec2& v : B.vertices) o << m.P(pl.at(int(b), v)) << " ";
+    o << "\"><title>" << xml_escape(B.id) << "</title></polygon>\n";
+  }
+  o << "</g>\n";
+  // Cracked joints: both faces bold, so an opening shows as a wedge between two black lines.
+  std::vector<int> open_count(r.joints.size(), 0);
+  for (const OpenCorner& oc : s.open_corners)
+    if (oc.joint >= 0 && oc.joint < int(open_count.size())) ++open_count[oc.joint];
+  o << "<g stroke=\"#111\" stroke-width=\"3\" stroke-linecap=\"round\">\n";
+  for (size_t j = 0; j < r.joints.size(); ++j) {
+    if (!open_count[j]) continue;
+    const JointInfo& J = r.joints[j];
+    for (int side : {J.i, J.j})
+      o << "<line x1=\"" << f1(m.X(pl.at(side, J.a).x())) << "\" y1=\"" << f1(m.Y(pl.at(side, J.a).y())) << "\" x2=\""
+        << f1(m.X(pl.at(side, J.b).x())) << "\" y2=\"" << f1(m.Y(pl.at(side, J.b).y())) << "\"/>\n";
+  }
+  o << "</g>\n";
+  // Joint resultants: a segment through the pressure point along the force, length ~ F / W.
+  // Smaller pressure-point dots when joints are many, or a pier becomes a string of beads.
+  const char* dot = r.joints.size() > 60 ? "1.3" : "2.2";
+  o << "<g stroke=\"" << kForce << "\" stroke-width=\"1.6\" fill=\"" << kForce << "\">\n";
+  for (const JointForce& jf : s.forces) {
+    if (!std::isfinite(jf.normal) || jf.normal <= 0) continue;
+    const Vec2 t(-jf.n.y(), jf.n.x());
+    const Vec2 F = jf.normal * jf.n + jf.shear * t;
+    const Vec2 h = 0.5 * F / f.weight * f.force_len;
+    o << "<line x1=\"" << f1(m.X(jf.point.x() - h.x())) << "\" y1=\"" << f1(m.Y(jf.point.y() - h.y())) << "\" x2=\""
+      << f1(m.X(jf.point.x() + h.x())) << "\" y2=\"" << f1(m.Y(jf.point.y() + h.y())) << "\"/>"
+      << "<circle cx=\"" << f1(m.X(jf.point.x())) << "\" cy=\"" << f1(m.Y(jf.point.y())) << "\" r=\"" << dot << "\"/>\n";
+  }
+  o << "</g>\n";
+  // Thrust line: through the pressure points, joined across every free block that carries force
+  // on exactly two joints (an arch ring, a pier shaft); branching blocks show their resultants only.
+  std::map<int, std::vector<Vec2>> per_block;
+  for (const JointForce& jf : s.forces) {
+    if (jf.joint < 0 || jf.joint >= int(r.joints.size()) || !(jf.normal > 0)) continue;
+    const JointInfo& J = r.joints[jf.joint];
+    for (int b : {J.i, J.j})
+      if (b >= 0 && b < int(c.blocks.size()) && !c.blocks[b].support) per_block[b].push_back(jf.point);
+  }
+  o << "<g stroke=\"" << kThrustLine << "\" stroke-width=\"2\" fill=\"none\">\n";
+  for (const auto& [b, pts] : per_block)
+    if (pts.size() == 2) o << "<line x1=\"" << f1(m.X(pts[0].x())) << "\" y1=\"" << f1(m.Y(pts[0].y())) << "\" x2=\"" << f1(m.X(pts[1].x())) << "\" y2=\"" << f1(m.Y(pts[1].y())) << "\"/>\n";
+  o << "</g>\n";
+  // Hinges: the closed corner of a joint with one open corner.
+  o << "<g fill=\"#fff\" stroke=\"" << kHinge << "\" stroke-width=\"2.2\">\n";
+  for (const Hinge& h : hinges_of(c, r, s)) {
+    const Vec2 p = pl.at(h.i, h.point);
+    o << "<circle cx=\"" << f1(m.X(p.x())) << "\" cy=\"" << f1(m.Y(p.y())) << "\" r=\"5\"><title>hinge " << xml_escape(h.label)
+      << "</title></circle>\n";
+  }
+  o << "</g>\n";
+  // Support reactions: an arrow ending where the structure bears on the support, labelled.
+  for (const Reaction& re : s.reactions) {
+    const int b = c.block_index(re.support);
+    Vec2 p;
+    if (b < 0 || !reaction_point(r, s, b, p)) continue;
+    const Vec2 tail = p - re.force / f.weight * f.force_len;
+    o << "<line x1=\"" << f1(m.X(tail.x())) << "\" y1=\"" << f1(m.Y(tail.y())) << "\" x2=\"" << f1(m.X(p.x())) << "\" y2=\""
+      << f1(m.Y(p.y())) << "\" stroke=\"" << kReaction << "\" stroke-width=\"2.6\" marker-end=\"url(#" << id << "arr)\"/>\n";
+    // Label under the arrow's tail, kept inside the panel; two short lines so that the labels
+    // of neighbouring supports do not run into each other.
+    const double lx = std::clamp(m.X(tail.x()), m.ox + 35, m.ox + width - 35);
+    const double ly = m.Y(tail.y());
+    o << "<text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 13) << "\" font-size=\"11\" fill=\"" << kReaction
+      << "\" text-anchor=\"middle\">H " << fg(re.force.x() / f.weight) << " W</text><text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 26)
+      << "\" font-size=\"11\" fill=\"" << kReaction << "\" text-anchor=\"middle\">V " << fg(re.force.y() / f.weight) << " W</text>\n";
+  }
+  // The imposed motion: a grey arrow beside each moving support (off to its side, clear of the
+  // structure above it), along its translation, and an arc for a rotation (counter-clockwise
+  // positive), so the reader sees which support moves and how.
+  for (const SupportMotion& sm : c.motion.supports) {
+    if (sm.block < 0 || sm.block >= int(c.blocks.size())) continue;
+    const Block& B = c.blocks[sm.block];
+    const Vec2 cen = pl.at(sm.block, centroid(B.vertices));
+    const double tn = sm.translation.norm();
+    const Vec2 u = tn > 0 ? Vec2(sm.translation / tn) : Vec2(1, 0);
+    const Vec2 perp(u.y(), -u.x());  // to the right of the motion: below a rightward push, left of a settlement
+    double reach = 0;                // half extent of the support along perp, m
+    for (const Vec2& v : B.vertices) reach = std::max(reach, (pl.at(sm.block, v) - cen).dot(perp));
+    const Vec2 mid = cen + perp * (reach + 16 / m.s);
+    const double X = m.X(mid.x()), Y = m.Y(mid.y()), L = 30;  // px
+    o << "<g stroke=\"#555\" stroke-width=\"2.4\" fill=\"none\"><title>imposed support motion</title>";
+    if (tn > 0)
+      o << "<line x1=\"" << f1(X - u.x() * L / 2) << "\" y1=\"" << f1(Y + u.y() * L / 2) << "\" x2=\"" << f1(X + u.x() * L / 2) << "\" y2=\""
+        << f1(Y - u.y() * L / 2) << "\" marker-end=\"url(#" << id << "mot)\"/>";
+    if (sm.rotation != 0) {
+      const double rr = 10, cx = X + perp.x() * 18, cy = Y - perp.y() * 18;
+      const bool ccw = sm.rotation > 0;
+      o << "<path d=\"M" << f1(cx + rr) << "," << f1(cy) << " A" << rr << "," << rr << " 0 1," << (ccw ? 0 : 1) << " " << f1(cx) << ","
+        << f1(ccw ? cy - rr : cy + rr) << "\" marker-end=\"url(#" << id << "mot)\"/>";
+    }
+    o << "</g>\n";
+  }
+  // Status line under the drawing.
+  const size_t nh = hinges_of(c, r, s).size();
+  o << "<text x=\"" << f1(m.ox + width / 2) << "\" y=\"" << f1(m.Y(f.lo.y()) + 16) << "\" text-anchor=\"middle\" font-size=\"12\" fill=\"#333\">"
+    << s.cracked.size() << " cracked joint" << (s.cracked.size() == 1 ? "" : "s") << ", " << nh << " hinge" << (nh == 1 ? "" : "s")
+    << "</text>\n";
+}
+
+// "Nice" tick step for a range.
+double nice_step(double range, int n) {
+  if (!(range > 0)) return 1;
+  const double raw = range / n, p = std::pow(10.0, std::floor(std::log10(raw))), q = raw / p;
+  return (q < 1.5 ? 1 : q < 3 ? 2 : q < 7 ? 5 : 10) * p;
+}
+
+}  // namespace
+
+std::string xml_escape(const std::string& s) {
+  std::string o;
+  o.reserve(s.size());
+  for (char ch : s) {
+    switch (ch) {
+      case '&': o += "&amp;"; break;
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '"': o += "&quot;"; break;
+      case '\'': o += "&#39;"; break;
+      default: o += ch;
+    }
+  }
+  return o;
+}
+
+DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs) {
+  DrawFrame f;
+  Vec2 lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max()), hi = -lo;
+  bool any = false;
+  for (const RunResult* r : runs)
+    for (const StepRecord* s : stable_records(*r)) {
+      if (s->poses.size() != c.blocks.size()) continue;
+      const Placer pl(c, *s);
+      for (size_t b = 0; b < c.blocks.size(); ++b)
+        for (const Vec2& v : c.blocks[b].vertices) {
+          const Vec2 p = pl.at(int(b), v);
+          if (!p.allFinite()) continue;
+          lo = lo.cwiseMin(p);
+          hi = hi.cwiseMax(p);
+          any = true;
+        }
+      f.weight = r->total_weight > 0 ? r->total_weight : f.weight;
+    }
+  if (!any)
+    for (const Block& b : c.blocks)
+      for (const Vec2& v : b.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+  const double size = std::max(hi.x() - lo.x(), hi.y() - lo.y());
+  // Forces drawn at 0.35 scene sizes per total weight: an arch's thrust (0.2-0.5 W) reads as a
+  // clear segment without covering the blocks.
+  f.force_len = 0.35 * size;
+  // The window also holds every reaction arrow (tail at p - R / W * force_len) and its label.
+  for (const RunResult* r : runs)
+    for (const StepRecord* s : stable_records(*r))
+      for (const Reaction& re : s->reactions) {
+        const int b = c.block_index(re.support);
+        Vec2 p;
+        if (b < 0 || !reaction_point(*r, *s, b, p)) continue;
+        const Vec2 tail = p - re.force / f.weight * f.force_len;
+        if (!tail.allFinite()) continue;
+        lo = lo.cwiseMin(tail - Vec2(0.02 * size, 0.09 * size));
+        hi = hi.cwiseMax(tail);
+      }
+  const double pad = 0.03 * size;
+  f.lo = lo - Vec2(pad, pad);
+  f.hi = hi + Vec2(pad, pad);
+  return f;
+}
+
+std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const DrawFrame& f, double panel_width,
+                          const std::string& id) {
+  const double gap = 20, top = 46, legend_h = 64;
+  const double s = panel_width / std::max(1e-12, f.hi.x() - f.lo.x());
+  const double ph = (f.hi.y() - f.lo.y()) * s;
+  const double W = panels.size() * panel_width + (panels.size() + 1) * gap;
+  const double H = top + ph + 24 + legend_h;
+  std::ostringstream o;
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 " << f1(W)
+    << " " << f1(H) << "\" font-family=\"Helvetica, Arial, sans-serif\">\n"
+    << arrow_defs(id)
+    << "<defs><pattern id=\"" << id << "hatch\" width=\"6\" height=\"6\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(45)\">"
+       "<rect width=\"6\" height=\"6\" fill=\"#cfcfcf\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"6\" stroke=\"#8a8a8a\" stroke-width=\"1.5\"/></pattern></defs>\n"
+    << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+  for (size_t k = 0; k < panels.size(); ++k) {
+    const Map m{gap + k * (panel_width + gap), top, s, f.lo.x(), f.hi.y()};
+    o << "<g class=\"panel\">\n";
+    draw_panel(o, c, panels[k], f, m, panel_width, id);
+    o << "</g>\n";
+  }
+  // Legend, with a force scale bar of 0.1 W.
+  const double ly = top + ph + 34;
+  double x = gap;
+  const auto item = [&](const std::string& glyph, const std::string& text, double w) {
+    o << "<g transform=\"translate(" << f1(x) << "," << f1(ly) << ")\">" << glyph << "<text x=\"30\" y=\"4\" font-size=\"12\">" << text
+      << "</text></g>\n";
+    x += w;
+  };
+  item("<line x1=\"0\" y1=\"0\" x2=\"24\" y2=\"0\" stroke=\"#111\" stroke-width=\"3\"/>", "cracked joint", 120);
+  item(std::string("<circle cx=\"12\" cy=\"0\" r=\"5\" fill=\"#fff\" stroke=\"") + kHinge + "\" stroke-width=\"2.2\"/>", "hinge", 80);
+  item(std::string("<line x1=\"0\" y1=\"0\" x2=\"24\" y2=\"0\" stroke=\"") + kThrustLine + "\" stroke-width=\"2\"/>", "thrust line", 110);
+  item(std::string("<line x1=\"0\" y1=\"0\" x2=\"24\" y2=\"0\" stroke=\"") + kForce + "\" stroke-width=\"1.6\"/><circle cx=\"12\" cy=\"0\" r=\"2.2\" fill=\"" +
+           kForce + "\"/>",
+       "joint resultant", 130);
+  item(std::string("<line x1=\"0\" y1=\"0\" x2=\"22\" y2=\"0\" stroke=\"") + kReaction + "\" stroke-width=\"2.6\" marker-end=\"url(#" + id + "arr)\"/>",
+       "support reaction (W = total weight)", 250);
+  item(std::string("<line x1=\"0\" y1=\"0\" x2=\"22\" y2=\"0\" stroke=\"#555\" stroke-width=\"2.4\" marker-end=\"url(#") + id + "mot)\"/>",
+       "imposed motion", 130);
+  const double bar = 0.1 * f.force_len * s;
+  o << "<g transform=\"translate(" << f1(gap) << "," << f1(ly + 22) << ")\"><line x1=\"0\" y1=\"0\" x2=\"" << f1(bar)
+    << "\" y2=\"0\" stroke=\"" << kForce << "\" stroke-width=\"1.6\"/><line x1=\"0\" y1=\"-4\" x2=\"0\" y2=\"4\" stroke=\"" << kForce
+    << "\"/><line x1=\"" << f1(bar) << "\" y1=\"-4\" x2=\"" << f1(bar) << "\" y2=\"4\" stroke=\"" << kForce << "\"/><text x=\"" << f1(bar + 8)
+    << "\" y=\"4\" font-size=\"12\">force scale: 0.1 W = " << kn(0.1 * f.weight) << " kN; hatched: supports</text></g>\n";
+  o << "</svg>\n";
+  return o.str();
+}
+
+std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult& b, bool cursor) {
+  const double W = 800, ph = 250, left = 70, right = 190, top = 40, between = 60;
+  const double H = top + 2 * ph + between + 50;
+  const double pw = W - left - right;
+  const double W_n = k.total_weight > 0 ? k.total_weight : 1.0;
+  const auto ra = stable_records(a), rb = stable_records(b);
+  double dmax = 0;
+  for (const auto* recs : {&ra, &rb})
+    if (!recs->empty()) dmax = std::max(dmax, recs->back()->d);
+  if (!(dmax > 0)) dmax = 1e-3;
+  const double sx = pw / dmax;  // px per m
+  std::vector<std::string> supports;
+  for (const SupportCurve& sc : k.supports) supports.push_back(sc.support);
+  std::ostringstream o;
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"thrust\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 "
+    << f1(W) << " " << f1(H) << "\" font-family=\"Helvetica, Arial, sans-serif\" data-x0=\"" << f1(left) << "\" data-sx=\"" << fg(sx, 10)
+    << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+  o << "<text x=\"" << f1(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Support reactions over total weight W = "
+    << kn(W_n) << " kN</text>\n";
+  for (int comp = 0; comp < 2; ++comp) {
+    const double oy = top + comp * (ph + between);
+    // Value range over both runs, all supports, with zero included.
+    double lo = std::numeric_limits<double>::max(), hi = -lo;
+    for (const auto* recs : {&ra, &rb})
+      for (const StepRecord* s : *recs)
+        for (const Reaction& x : s->reactions) {
+          const double v = (comp == 0 ? x.force.x() : x.force.y()) / W_n;
+          if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+    if (lo > hi) lo = hi = 0;
+    // A span of at least 0.05 W, so round-off does not look like a trend.
+    if (hi - lo < 0.05) {
+      const double mid = 0.5 * (hi + lo);
+      lo = mid - 0.025;
+      hi = mid + 0.025;
+    }
+    const double padv = 0.06 * (hi - lo);
+    lo -= padv;
+    hi += padv;
+    const auto X = [&](double d) { return left + d * sx; };
+    const auto Y = [&](double v) { return oy + (hi - v) / (hi - lo) * ph; };
+    // Axes and grid.
+    o << "<g font-size=\"11\" fill=\"#333\">\n";
+    const double ty = nice_step(hi - lo, 6);
+    for (double v = std::ceil(lo / ty) * ty; v <= hi + 1e-12; v += ty)
+      o << "<line x1=\"" << f1(left) << "\" x2=\"" << f1(left + pw) << "\" y1=\"" << f1(Y(v)) << "\" y2=\"" << f1(Y(v))
+        << "\" stroke=\"" << (std::abs(v) < ty * 1e-6 ? "#999" : "#e6e6e6") << "\"/><text x=\"" << f1(left - 6) << "\" y=\"" << f1(Y(v) + 4)
+        << "\" text-anchor=\"end\">" << fg(std::abs(v) < ty * 1e-6 ? 0.0 : v) << "</text>\n";
+    const double tx = nice_step(dmax * 1000, 8) / 1000;
+    for (double d = 0; d <= dmax + 1e-12; d += tx)
+      o << "<line x1=\"" << f1(X(d)) << "\" x2=\"" << f1(X(d)) << "\" y1=\"" << f1(oy) << "\" y2=\"" << f1(oy + ph)
+        << "\" stroke=\"#eeeeee\"/><text x=\"" << f1(X(d)) << "\" y=\"" << f1(oy + ph + 14) << "\" text-anchor=\"middle\">" << fg(d * 1000, 4)
+        << "</text>\n";
+    o << "<rect x=\"" << f1(left) << "\" y=\"" << f1(oy) << "\" width=\"" << f1(pw) << "\" height=\"" << f1(ph)
+      << "\" fill=\"none\" stroke=\"#333\"/>\n";
+    o << "<text x=\"" << f1(left + pw / 2) << "\" y=\"" << f1(oy + ph + 30) << "\" text-anchor=\"middle\" font-size=\"12\">support displacement d (mm)</text>\n";
+    o << "<text transform=\"translate(" << f1(left - 46) << "," << f1(oy + ph / 2) << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">"
+      << (comp == 0 ? "horizontal reaction H / W" : "vertical reaction V / W") << "</text>\n";
+    o << "</g>\n";
+    // Mechanism changes: ticks at the top (a) and the bottom (b) of the panel, and the capacities.
+    const auto marks = [&](const RunSummary& rs, bool at_top, const char* dash) {
+      for (double d : rs.changes)
+        o << "<path d=\"M" << f1(X(d)) << "," << f1(at_top ? oy : oy + ph) << " l-4," << (at_top ? "-8" : "8") << " h8 z\" fill=\"#555\"><title>"
+          << xml_escape(rs.label) << ": mechanism changes at d = " << fg(d * 1000, 4) << " mm</title></path>\n";
+      o << "<line x1=\"" << f1(X(rs.capacity)) << "\" x2=\"" << f1(X(rs.capacity)) << "\" y1=\"" << f1(oy) << "\" y2=\"" << f1(oy + ph)
+        << "\" stroke=\"#555\" stroke-width=\"1\" stroke-dasharray=\"" << dash << "\"/>\n";
+    };
+    marks(k.a, true, "2,3");
+    marks(k.b, false, "7,4");
+    // Curves: one colour per support; a solid, b dashed.
+    for (size_t si = 0; si < supports.size(); ++si) {
+      const char* col = kSupportColors[si % 8];
+      for (int run = 0; run < 2; ++run) {
+        const auto& recs = run == 0 ? ra : rb;
+        std::string pts;
+        for (const StepRecord* s : recs)
+          for (const Reaction& x : s->reactions)
+            if (x.support == supports[si]) {
+              const double v = (comp == 0 ? x.force.x() : x.force.y()) / W_n;
+              if (std::isfinite(v)) pts += f1(X(s->d)) + "," + f1(Y(v)) + " ";
+            }
+        o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"" << (run == 0 ? "2.2" : "2") << "\""
+          << (run == 1 ? " stroke-dasharray=\"7,4\"" : "") << " points=\"" << pts << "\"/>\n";
+      }
+    }
+    if (cursor)
+      o << "<line class=\"cursor\" x1=\"" << f1(left) << "\" x2=\"" << f1(left) << "\" y1=\"" << f1(oy) << "\" y2=\"" << f1(oy + ph)
+        << "\" stroke=\"#000\" stroke-width=\"1.5\" opacity=\"0.6\"/>\n";
+  }
+  // Legend on the right.
+  double ly = top + 10;
+  const double lx = left + pw + 16;
+  o << "<g font-size=\"12\">\n";
+  for (int run = 0; run < 2; ++run) {
+    const RunSummary& rs = run == 0 ? k.a : k.b;
+    o << "<line x1=\"" << f1(lx) << "\" x2=\"" << f1(lx + 30) << "\" y1=\"" << f1(ly) << "\" y2=\"" << f1(ly) << "\" stroke=\"#333\" stroke-width=\"2\""
+      << (run == 1 ? " stroke-dasharray=\"7,4\"" : "") << "/><text x=\"" << f1(lx + 36) << "\" y=\"" << f1(ly + 4) << "\">" << xml_escape(rs.label)
+      << "</text>\n";
+    ly += 20;
+  }
+  ly += 6;
+  for (size_t si = 0; si < supports.size(); ++si) {
+    o << "<rect x=\"" << f1(lx) << "\" y=\"" << f1(ly - 6) << "\" width=\"30\" height=\"10\" fill=\"" << kSupportColors[si % 8]
+      << "\"/><text x=\"" << f1(lx + 36) << "\" y=\"" << f1(ly + 4) << "\">" << xml_escape(supports[si]) << "</text>\n";
+    ly += 18;
+  }
+  ly += 10;
+  o << "<text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 4) << "\">mechanism changes:</text>\n";
+  ly += 18;
+  o << "<path d=\"M" << f1(lx + 15) << "," << f1(ly + 4) << " l-4,-8 h8 z\" fill=\"#555\"/><text x=\"" << f1(lx + 30) << "\" y=\"" << f1(ly + 4)
+    << "\">" << xml_escape(k.a.label) << " (top)</text>\n";
+  ly += 18;
+  o << "<path d=\"M" << f1(lx + 15) << "," << f1(ly - 4) << " l-4,8 h8 z\" fill=\"#555\"/><text x=\"" << f1(lx + 30) << "\" y=\"" << f1(ly + 4)
+    << "\">" << xml_escape(k.b.label) << " (bottom)</text>\n";
+  ly += 22;
+  o << "<line x1=\"" << f1(lx) << "\" x2=\"" << f1(lx + 30) << "\" y1=\"" << f1(ly) << "\" y2=\"" << f1(ly)
+    << "\" stroke=\"#555\" stroke-dasharray=\"2,3\"/><text x=\"" << f1(lx + 36) << "\" y=\"" << f1(ly + 4) << "\">capacities</text>\n";
+  o << "</g>\n</svg>\n";
+  return o.str();
+}
+
+std::string svg_capacity(const std::vector<Bar>& bars) {
+  const double left = 150, bw = 480, bh = 26, gap = 12, top = 34;
+  const double H = top + bars.size() * (bh + gap) + 30, W = left + bw + 110;
+  double vmax = 0;
+  for (const Bar& b : bars)
+    if (std::isfinite(b.value)) vmax = std::max(vmax, b.value);
+  if (!(vmax > 0)) vmax = 1e-3;
+  std::ostringstream o;
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 " << f1(W) << " " << f1(H)
+    << "\" font-family=\"Helvetica, Arial, sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n"
+    << "<text x=\"" << f1(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Displacement capacity (last stable d)</text>\n";
+  for (size_t k = 0; k < bars.size(); ++k) {
+    const double y = top + k * (bh + gap);
+    const double w = std::isfinite(bars[k].value) ? bars[k].value / vmax * bw : 0;
+    o << "<text x=\"" << f1(left - 8) << "\" y=\"" << f1(y + bh / 2 + 5) << "\" text-anchor=\"end\" font-size=\"13\">" << xml_escape(bars[k].label)
+      << "</text><rect x=\"" << f1(left) << "\" y=\"" << f1(y) << "\" width=\"" << f1(w) << "\" height=\"" << f1(bh) << "\" fill=\""
+      << xml_escape(bars[k].color) << "\"/><text x=\"" << f1(left + w + 6) << "\" y=\"" << f1(y + bh / 2 + 5) << "\" font-size=\"13\">"
+      << mm(bars[k].value) << "</text>\n";
+  }
+  o << "<line x1=\"" << f1(left) << "\" x2=\"" << f1(left) << "\" y1=\"" << f1(top - 4) << "\" y2=\"" << f1(H - 26) << "\" stroke=\"#333\"/>\n</svg>\n";
+  return o.str();
+}
+
+}  // namespace masonry

@@ -1,0 +1,176 @@
+// The comparison's numbers: a run against itself differs by exactly nothing, doctored results
+// trip the tolerance gate, results.json reads back to the same comparison, missing numbers are
+// null, and the pointed arch is recognised as symmetric with the mirror pairs its generator
+// documents (cases/generators.hpp: "left".."right", "v0".."v13").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "compare.hpp"
+#include "prd.hpp"
+
+namespace masonry {
+namespace {
+
+const Case& arch() {
+  static const Case c = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/pointed-arch.json");
+  return c;
+}
+
+const RunResult& arch_prd() {
+  static const RunResult r = prd_run(arch(), PrdSettings::from_case(arch()));
+  return r;
+}
+
+TEST(Compare, RunAgainstItselfDiffersByNothing) {
+  const RunResult& r = arch_prd();
+  ASSERT_GT(r.capacity, 0.0);
+  const Comparison k = compare_runs(arch(), r, r);
+  EXPECT_EQ(k.capacity_rel_diff, 0.0);
+  EXPECT_EQ(k.thrust_max_diff, 0.0);
+  EXPECT_EQ(k.thrust_rms_diff, 0.0);
+  EXPECT_EQ(k.d_max, r.capacity);
+  EXPECT_EQ(k.supports.size(), 2u);  // "left" and "right"
+  ASSERT_FALSE(k.hinges.empty());
+  for (const HingeCheck& h : k.hinges) EXPECT_TRUE(h.match) << "d = " << h.d;
+  EXPECT_EQ(k.a.changes, k.b.changes);
+  EXPECT_TRUE(check_tolerances(k, {0.0, 0.0, true}).empty());
+}
+
+TEST(Compare, TwoPrdRunsOfOneCaseDifferByNothing) {
+  // PRD is deterministic: a second run of the same case is the same run.
+  const RunResult again = prd_run(arch(), PrdSettings::from_case(arch()));
+  const Comparison k = compare_runs(arch(), arch_prd(), again);
+  EXPECT_EQ(k.capacity_rel_diff, 0.0);
+  EXPECT_EQ(k.thrust_max_diff, 0.0);
+  for (const HingeCheck& h : k.hinges) EXPECT_TRUE(h.match);
+  EXPECT_TRUE(check_tolerances(k, {0.05, 0.10, true}).empty());
+}
+
+TEST(Compare, ToleranceGateFailsOnDoctoredCapacity) {
+  RunResult doctored = arch_prd();
+  doctored.capacity *= 1.2;
+  const Tolerances t = parse_tolerances(R"({"capacity": 0.05, "thrust": 0.10, "hinges": true})", "test");
+  const auto v = check_tolerances(compare_runs(arch(), arch_prd(), doctored), t);
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].rfind("capacity", 0), 0u) << v[0];
+  EXPECT_TRUE(check_tolerances(compare_runs(arch(), arch_prd(), arch_prd()), t).empty());
+}
+
+TEST(Compare, ToleranceGateFailsOnDoctoredThrust) {
+  RunResult doctored = arch_prd();
+  // 0.2 W more horizontal reaction on the left support at one record in the middle.
+  StepRecord& s = doctored.steps[doctored.steps.size() / 2];
+  s.reactions[0].force.x() += 0.2 * doctored.total_weight;
+  const Comparison k = compare_runs(arch(), arch_prd(), doctored);
+  EXPECT_NEAR(k.thrust_max_diff, 0.2, 1e-12);
+  const auto v = check_tolerances(k, {std::nullopt, 0.10, false});
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].rfind("thrust", 0), 0u) << v[0];
+  EXPECT_TRUE(check_tolerances(k, {std::nullopt, 0.25, false}).empty());
+}
+
+TEST(Compare, ToleranceGateFailsOnDoctoredHinges) {
+  RunResult doctored = arch_prd();
+  for (StepRecord& s : doctored.steps) {
+    s.open_corners.clear();
+    s.cracked.clear();
+  }
+  const Comparison k = compare_runs(arch(), arch_prd(), doctored);
+  EXPECT_FALSE(check_tolerances(k, {std::nullopt, std::nullopt, true}).empty());
+  EXPECT_TRUE(check_tolerances(k, {std::nullopt, std::nullopt, false}).empty());
+  EXPECT_TRUE(k.b.changes.empty());
+  EXPECT_FALSE(k.a.changes.empty());
+}
+
+TEST(Compare, PointedArchIsItsOwnMirrorImage) {
+  const Case& c = arch();
+  const std::vector<int> m = mirror_blocks(c);
+  ASSERT_EQ(m.size(), c.blocks.size());
+  EXPECT_EQ(m[c.block_index("left")], c.block_index("right"));
+  EXPECT_EQ(m[c.block_index("v0")], c.block_index("v13"));
+  EXPECT_EQ(m[c.block_index("v6")], c.block_index("v7"));
+}
+
+TEST(Compare, MirroredHingesMatchAsMirrorImage) {
+  // The hinges of a run, moved to their mirror joints: not a match, but a mirror match.
+  const Case& c = arch();
+  const RunResult& r = arch_prd();
+  const std::vector<int> m = mirror_blocks(c);
+  RunResult mirrored = r;
+  for (StepRecord& s : mirrored.steps) {
+    std::vector<OpenCorner> oc;
+    for (const OpenCorner& o : s.open_corners) {
+      const JointInfo& j = r.joints[o.joint];
+      const Vec2 p = o.corner == 0 ? j.a : j.b;
+      const Vec2 q(-p.x(), p.y());  // the arch is symmetric about x = 0
+      for (size_t k = 0; k < r.joints.size(); ++k) {
+        const JointInfo& g = r.joints[k];
+        const bool pair = (g.i == m[j.i] && g.j == m[j.j]) || (g.i == m[j.j] && g.j == m[j.i]);
+        if (!pair) continue;
+        OpenCorner x = o;
+        x.joint = int(k);
+        x.corner = (g.a - q).norm() < (g.b - q).norm() ? 0 : 1;
+        oc.push_back(x);
+      }
+    }
+    s.open_corners = oc;
+  }
+  const Comparison k = compare_runs(c, r, mirrored);
+  EXPECT_TRUE(k.symmetric);
+  bool some_hinge = false;
+  for (const HingeCheck& h : k.hinges) {
+    some_hinge = some_hinge || !h.a.empty();
+    EXPECT_TRUE(h.ok()) << "d = " << h.d;
+    if (!h.a.empty()) {
+      EXPECT_FALSE(h.match);
+    }
+  }
+  EXPECT_TRUE(some_hinge);
+  EXPECT_TRUE(check_tolerances(k, {std::nullopt, std::nullopt, true}).empty());
+}
+
+TEST(Compare, ResultsJsonReadsBackToTheSameRun) {
+  const RunResult& r = arch_prd();
+  const std::string text = to_json(r, arch()).dump(1);
+  const RunResult back = parse_results(text, arch(), "results.json");
+  EXPECT_EQ(back.method, "prd");
+  EXPECT_EQ(back.steps.size(), r.steps.size());
+  EXPECT_EQ(back.joints.size(), r.joints.size());
+  const Comparison k = compare_runs(arch(), r, back);
+  EXPECT_EQ(k.capacity_rel_diff, 0.0);
+  EXPECT_EQ(k.thrust_max_diff, 0.0);
+  for (const HingeCheck& h : k.hinges) EXPECT_TRUE(h.match);
+}
+
+TEST(Compare, ResultsOfAnotherCaseAreRefused) {
+  Case other = arch();
+  other.blocks[3].id = "not-v2";
+  EXPECT_THROW(parse_results(to_json(arch_prd(), arch()).dump(), other, "results.json"), std::runtime_error);
+  EXPECT_THROW(parse_results("{", arch(), "results.json"), std::runtime_error);
+}
+
+TEST(Compare, MissingNumbersAreNullNotNaN) {
+  RunResult b = arch_prd();
+  b.capacity = std::numeric_limits<double>::quiet_NaN();
+  const Comparison k = compare_runs(arch(), arch_prd(), b);
+  const auto j = to_json(k);
+  EXPECT_TRUE(j["capacity"]["b"].is_null());
+  EXPECT_TRUE(j["capacity"]["relative_difference"].is_null());
+  EXPECT_EQ(j.dump().find("NaN"), std::string::npos);
+  EXPECT_FALSE(check_tolerances(k, {0.05, std::nullopt, false}).empty());  // unknown is not a pass
+}
+
+TEST(Compare, ToleranceFileIsStrict) {
+  EXPECT_THROW(parse_tolerances(R"({"capacty": 0.05})", "t.json"), std::runtime_error);
+  EXPECT_THROW(parse_tolerances(R"({"capacity": "5%"})", "t.json"), std::runtime_error);
+  EXPECT_THROW(parse_tolerances(R"({"hinges": 1})", "t.json"), std::runtime_error);
+  const Tolerances t = parse_tolerances(R"({"capacity": 0.05, "thrust": 0.1, "hinges": true})", "t.json");
+  EXPECT_EQ(*t.capacity, 0.05);
+  EXPECT_EQ(*t.thrust, 0.1);
+  EXPECT_TRUE(t.hinges);
+}
+
+}  // namespace
+}  // namespace masonry

@@ -1,0 +1,175 @@
+// Reports and the command: the tolerance gate's exit code through `masonry compare --runs`, the
+// reports' escaping of case text, and report.html in headless Chromium (no console errors, the
+// slider's test hook changes the drawn step, markup in a case name does not run).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "compare.hpp"
+#include "prd.hpp"
+#include "report.hpp"
+
+namespace masonry {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("masonry-compare-test-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+int run(const std::string& cmd) {
+  const int rc = std::system(cmd.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+const std::string kArch = std::string(MASONRY_SOURCE_DIR) + "/cases/pointed-arch.json";
+
+// A case whose name and a block id try to run script in the HTML report: each payload, if it
+// ever ran, would set data-pwned="yes" on <body>; the string "yes" appears nowhere in the payload.
+const std::string kPayload =
+    "<script>document.body.setAttribute('data-pwned','y'+'es')</script>"
+    "<img src=x onerror=\"document.body.setAttribute('data-pwned','y'+'es')\">";
+
+TEST(CompareCommand, ToleranceGateSetsTheExitCode) {
+  const fs::path d = fresh_dir("gate");
+  ASSERT_EQ(run(std::string(MASONRY_EXE) + " prd " + kArch + " --out " + (d / "a").string() + " 2>/dev/null"), 0);
+  // b: the same run with its capacity doctored to 1.2 times.
+  fs::create_directories(d / "b");
+  auto j = nlohmann::ordered_json::parse(read(d / "a" / "results.json"));
+  j["capacity"] = j["capacity"].get<double>() * 1.2;
+  write(d / "b" / "results.json", j.dump());
+  write(d / "tol.json", R"({"capacity": 0.05, "thrust": 0.10, "hinges": true})");
+  const std::string base = std::string(MASONRY_EXE) + " compare " + kArch + " --quiet --tolerances " + (d / "tol.json").string();
+  EXPECT_EQ(run(base + " --runs " + (d / "a").string() + " " + (d / "a").string() + " --out " + (d / "same").string() + " 2>/dev/null"), 0);
+  EXPECT_NE(run(base + " --runs " + (d / "a").string() + " " + (d / "b").string() + " --out " + (d / "doctored").string() + " 2>/dev/null"), 0);
+  const std::string md = read(d / "doctored" / "report.md");
+  EXPECT_NE(md.find("**FAIL**"), std::string::npos);
+  EXPECT_NE(md.find("capacity: PRD a"), std::string::npos) << "the report names the violated limit";
+  const auto cj = nlohmann::json::parse(read(d / "doctored" / "comparison.json"));
+  EXPECT_FALSE(cj["comparisons"][0]["tolerances"]["pass"].get<bool>());
+  EXPECT_NEAR(cj["comparisons"][0]["capacity"]["relative_difference"].get<double>(), 0.2, 1e-12);
+  const auto sj = nlohmann::json::parse(read(d / "same" / "comparison.json"));
+  EXPECT_TRUE(sj["comparisons"][0]["tolerances"]["pass"].get<bool>());
+  EXPECT_EQ(sj["comparisons"][0]["thrust"]["max_difference"].get<double>(), 0.0);
+  fs::remove_all(d);
+}
+
+// A PRD-against-PRD report (1 mm and 2 mm steps) of the arch, with markup in its name and ids.
+Report markup_report(Case& c, RunResult& a, RunResult& b) {
+  c = load_case(kArch);
+  c.name = kPayload;
+  c.blocks[c.block_index("v3")].id = "v3" + kPayload;
+  c.blocks[c.block_index("right")].id = "right<b>|*";
+  PrdSettings s = PrdSettings::from_case(c);
+  a = prd_run(c, s);
+  s.step = 0.002;
+  b = prd_run(c, s);
+  return make_report(c, {{"PRD 1mm", &a, "a"}, {"PRD 2mm<i>", &b, "b"}});
+}
+
+TEST(CompareReport, CaseTextIsEscapedEverywhere) {
+  Case c;
+  RunResult a, b;
+  const Report r = markup_report(c, a, b);
+  const auto figs = report_figures(r);
+  const std::string md = report_markdown(r, figs), html = report_html(r, 10);
+  for (const std::string* text : {&md, &html}) {
+    EXPECT_EQ(text->find("<script>document"), std::string::npos);
+    EXPECT_EQ(text->find("<img"), std::string::npos);
+    EXPECT_EQ(text->find("<b>"), std::string::npos);
+    EXPECT_EQ(text->find("<i>"), std::string::npos);
+  }
+  for (const Figure& f : figs) {
+    EXPECT_EQ(f.svg.find("<script"), std::string::npos) << f.file;
+    EXPECT_EQ(f.svg.find("<img"), std::string::npos) << f.file;
+  }
+  EXPECT_NE(html.find("&lt;script&gt;"), std::string::npos);  // shown as text
+}
+
+bool have_chromium() { return run("command -v chromium >/dev/null 2>&1") == 0; }
+
+// Loads the page in headless Chromium and returns the DOM after the page's own script ran.
+std::string dump_dom(const fs::path& html, const std::string& fragment, const fs::path& work) {
+  const fs::path profile = work / "profile", out = work / "dom.html";
+  const std::string cmd = "timeout 90 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+                          "--disable-background-networking --disable-component-update --disable-sync --user-data-dir=" +
+                          profile.string() + " --virtual-time-budget=5000 --dump-dom 'file://" + html.string() + fragment + "' > " +
+                          out.string() + " 2>/dev/null";
+  EXPECT_EQ(run(cmd), 0) << cmd;
+  return read(out);
+}
+
+TEST(CompareReport, HtmlRunsInHeadlessChromium) {
+  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it; CI runs this test)";
+  const fs::path d = fresh_dir("chromium");
+  Case c;
+  RunResult a, b;
+  Report r = markup_report(c, a, b);
+  r.frames = 12;
+  write_report(d.string(), r);
+  const fs::path html = d / "report.html";
+
+  const std::string dom0 = dump_dom(html, "", d);
+  const std::string dom5 = dump_dom(html, "#step=5", d);
+  for (const std::string* dom : {&dom0, &dom5}) {
+    ASSERT_NE(dom->find("data-ready=\"1\""), std::string::npos) << "the page's script did not finish";
+    // No error, console error or blocked script was recorded.
+    const size_t pre = dom->find("<pre id=\"errors\"");
+    ASSERT_NE(pre, std::string::npos);
+    const size_t open = dom->find('>', pre), close = dom->find("</pre>", pre);
+    ASSERT_TRUE(open != std::string::npos && close != std::string::npos && open < close);
+    EXPECT_EQ(dom->substr(open + 1, close - open - 1), "") << "errors in the page";
+    EXPECT_EQ(dom->find("data-pwned=\"yes\""), std::string::npos) << "markup from the case ran";
+  }
+  // The slider position drawn: frame 0 without the hook, frame 5 with it, at a larger d.
+  // (d, index) of the frames without the hidden attribute: exactly one is expected.
+  const auto shown = [](const std::string& dom) {
+    std::vector<std::pair<double, int>> out;
+    const std::string tag = "<div class=\"frame\" data-d=\"";
+    for (size_t at = dom.find(tag); at != std::string::npos; at = dom.find(tag, at + 1)) {
+      const std::string head = dom.substr(at, dom.find('>', at) - at);
+      if (head.find(" hidden") != std::string::npos) continue;
+      const size_t d0 = tag.size(), i0 = head.find("data-index=\"") + 12;
+      out.emplace_back(std::stod(head.substr(d0)), std::stoi(head.substr(i0)));
+    }
+    EXPECT_EQ(out.size(), 1u) << "exactly one frame drawn";
+    return out.empty() ? std::make_pair(-1.0, -1) : out.front();
+  };
+  EXPECT_NE(dom0.find("data-frame=\"0\""), std::string::npos);
+  EXPECT_NE(dom5.find("data-frame=\"5\""), std::string::npos);
+  const auto f0 = shown(dom0), f5 = shown(dom5);
+  EXPECT_EQ(f0.second, 0);
+  EXPECT_EQ(f5.second, 5);
+  EXPECT_GT(f5.first, f0.first);
+  // The cursor of the thrust curves moved with it.
+  EXPECT_NE(dom0.find("class=\"cursor\" x1=\"70"), std::string::npos);
+  EXPECT_EQ(dom5.find("class=\"cursor\" x1=\"70\""), std::string::npos);
+  fs::remove_all(d);
+}
+
+}  // namespace
+}  // namespace masonry
