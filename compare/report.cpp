@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 
+#include "format.hpp"
 #include "svg.hpp"
 
 namespace masonry {
@@ -29,12 +30,6 @@ std::string pct(double x) {
   std::snprintf(b, sizeof b, "%+.1f%%", x * 100);
   return b;
 }
-std::string g(double x, int prec = 3) {
-  if (!std::isfinite(x)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.*g", prec, x);
-  return b;
-}
 std::string secs(double s) {
   if (!std::isfinite(s)) return "n/a";
   char b[32];
@@ -47,14 +42,6 @@ std::string ratio(double x) {
   if (!std::isfinite(x)) return "n/a";
   char b[32];
   std::snprintf(b, sizeof b, x >= 100 ? "%.0f" : "%.3g", x);
-  return b;
-}
-// kN without an exponent: 5.77, 577, 19351.
-std::string kn(double newton) {
-  if (!std::isfinite(newton)) return "n/a";
-  const double k = newton / 1000;
-  char b[32];
-  std::snprintf(b, sizeof b, std::abs(k) >= 100 ? "%.0f" : std::abs(k) >= 10 ? "%.1f" : "%.3g", k);
   return b;
 }
 
@@ -224,9 +211,9 @@ std::string report_markdown(const Report& r, const std::vector<Figure>& figures)
   o << "\n| relative to " << md_escape(r.runs[0].label) << " | - | ";
   for (const Comparison& k : r.comparisons) o << pct(k.capacity_rel_diff) << " | ";
   o << "\n| largest thrust difference (W) | - | ";
-  for (const Comparison& k : r.comparisons) o << g(k.thrust_max_diff) << " | ";
+  for (const Comparison& k : r.comparisons) o << fmt::g(k.thrust_max_diff) << " | ";
   o << "\n| rms thrust difference (W) | - | ";
-  for (const Comparison& k : r.comparisons) o << g(k.thrust_rms_diff) << " | ";
+  for (const Comparison& k : r.comparisons) o << fmt::g(k.thrust_rms_diff) << " | ";
   o << "\n| hinges match (of checks) | - | ";
   for (const Comparison& k : r.comparisons) {
     int ok = 0;
@@ -245,8 +232,8 @@ std::string report_markdown(const Report& r, const std::vector<Figure>& figures)
   o << "\n\n";
   if (r.tolerances_checked) {
     o << "## Tolerance checks\n\nLimits: capacity "
-      << (r.tolerances.capacity ? g(*r.tolerances.capacity * 100) + "%" : std::string("not checked")) << ", thrust "
-      << (r.tolerances.thrust ? g(*r.tolerances.thrust) + " W" : std::string("not checked")) << ", hinges "
+      << (r.tolerances.capacity ? fmt::g(*r.tolerances.capacity * 100) + "%" : std::string("not checked")) << ", thrust "
+      << (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) << ", hinges "
       << (r.tolerances.hinges ? "must match" : "not checked") << ".\n\n";
     for (size_t k = 0; k < r.comparisons.size(); ++k) {
       o << "- " << md_escape(r.comparisons[k].a.label) << " against " << md_escape(r.comparisons[k].b.label) << ": "
@@ -266,10 +253,10 @@ std::string report_markdown(const Report& r, const std::vector<Figure>& figures)
     const std::string n = std::to_string(k + 1);
     o << "## " << md_escape(cmp.a.label) << " against " << md_escape(cmp.b.label) << "\n\n";
     o << "### Thrust curves\n\nHorizontal (H) and vertical (V) reaction of every support over the total weight W = "
-      << kn(cmp.total_weight) << " kN, against d. Compared on the common range d = 0 to " << mm(cmp.d_max)
+      << fmt::kn(cmp.total_weight) << " kN, against d. Compared on the common range d = 0 to " << mm(cmp.d_max)
       << " mm (" << cmp.d.size() << " points, every record of either run, linear interpolation between records): largest difference "
-      << g(cmp.thrust_max_diff) << " W (" << md_escape(cmp.thrust_max_where) << " at d = " << mm(cmp.thrust_max_d) << " mm), root-mean-square "
-      << g(cmp.thrust_rms_diff) << " W.";
+      << fmt::g(cmp.thrust_max_diff) << " W (" << md_escape(cmp.thrust_max_where) << " at d = " << mm(cmp.thrust_max_d) << " mm), root-mean-square "
+      << fmt::g(cmp.thrust_rms_diff) << " W.";
     if (cmp.thrust_max_d == 0.0 && cmp.d_max > 0)
       o << " At d = 0 the structure is statically indeterminate: PRD reports one admissible force state among many, the DEM "
            "the one its settling under gravity finds, so a difference there is expected (the paper, Section 4: PRD gives \"just one of the infinite admissible stress states\" where the structure is statically indeterminate).";
@@ -278,8 +265,8 @@ std::string report_markdown(const Report& r, const std::vector<Figure>& figures)
       << md_escape(cmp.b.label) << " | V at d = " << mm(cmp.d_max) << " mm |\n|---|---:|---:|---:|\n";
     for (const SupportCurve& s : cmp.supports) {
       const bool e = !s.h_a.empty();
-      o << "| " << md_escape(s.support) << " | " << g(s.max_diff) << " | " << (e ? g(s.h_a.back()) + " / " + g(s.h_b.back()) : "n/a")
-        << " | " << (e ? g(s.v_a.back()) + " / " + g(s.v_b.back()) : "n/a") << " |\n";
+      o << "| " << md_escape(s.support) << " | " << fmt::g(s.max_diff) << " | " << (e ? fmt::g(s.h_a.back()) + " / " + fmt::g(s.h_b.back()) : "n/a")
+        << " | " << (e ? fmt::g(s.v_a.back()) + " / " + fmt::g(s.v_b.back()) : "n/a") << " |\n";
     }
     o << "\n";
     fig("figures/thrust-" + n + ".svg");
@@ -375,7 +362,7 @@ std::string report_html(const Report& r, int frames) {
   o << "</tr>\n<tr><td>relative to " << xml_escape(r.runs[0].label) << "</td><td>-</td>";
   for (const Comparison& k : r.comparisons) o << "<td>" << pct(k.capacity_rel_diff) << "</td>";
   o << "</tr>\n<tr><td>largest / rms thrust difference (W)</td><td>-</td>";
-  for (const Comparison& k : r.comparisons) o << "<td>" << g(k.thrust_max_diff) << " / " << g(k.thrust_rms_diff) << "</td>";
+  for (const Comparison& k : r.comparisons) o << "<td>" << fmt::g(k.thrust_max_diff) << " / " << fmt::g(k.thrust_rms_diff) << "</td>";
   o << "</tr>\n<tr><td>hinges agree (of checks)</td><td>-</td>";
   for (const Comparison& k : r.comparisons) {
     int ok = 0;
@@ -422,9 +409,9 @@ std::string report_html(const Report& r, int frames) {
   for (size_t k = 0; k < r.comparisons.size(); ++k) {
     const Comparison& cmp = r.comparisons[k];
     o << "<h2>" << xml_escape(cmp.a.label) << " against " << xml_escape(cmp.b.label) << "</h2>\n";
-    o << "<p>Common range d = 0 to " << mm(cmp.d_max) << " mm; largest thrust difference " << g(cmp.thrust_max_diff) << " W ("
+    o << "<p>Common range d = 0 to " << mm(cmp.d_max) << " mm; largest thrust difference " << fmt::g(cmp.thrust_max_diff) << " W ("
       << xml_escape(cmp.thrust_max_where) << " at d = " << mm(cmp.thrust_max_d) << " mm), rms "
-      << g(cmp.thrust_rms_diff) << " W. Mechanism changes (mm): " << xml_escape(cmp.a.label) << " " << changes_mm(cmp.a) << "; "
+      << fmt::g(cmp.thrust_rms_diff) << " W. Mechanism changes (mm): " << xml_escape(cmp.a.label) << " " << changes_mm(cmp.a) << "; "
       << xml_escape(cmp.b.label) << " " << changes_mm(cmp.b) << ".</p>\n";
     o << svg_thrust(cmp, *r.runs[0].run, *r.runs[k + 1].run, true);
     o << "<table><tr><th>d (mm)</th><th>" << xml_escape(cmp.a.label) << " hinges</th><th>" << xml_escape(cmp.b.label)

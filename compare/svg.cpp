@@ -1,5 +1,7 @@
 #include "svg.hpp"
 
+#include "format.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,20 +23,6 @@ const char* kHinge = "#d62728";
 std::string f1(double x) {
   char b[32];
   std::snprintf(b, sizeof b, "%.1f", std::isfinite(x) ? x : 0.0);
-  return b;
-}
-std::string fg(double x, int prec = 3) {
-  if (!std::isfinite(x)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.*g", prec, x);
-  return b;
-}
-// kN with a sensible number of digits and no exponent: 5.77, 577, 19350.
-std::string kn(double newton) {
-  if (!std::isfinite(newton)) return "n/a";
-  const double k = newton / 1000;
-  char b[32];
-  std::snprintf(b, sizeof b, std::abs(k) >= 100 ? "%.0f" : std::abs(k) >= 10 ? "%.1f" : "%.3g", k);
   return b;
 }
 std::string mm(double m) {
@@ -179,8 +167,8 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     const double lx = std::clamp(m.X(tail.x()), m.ox + 35, m.ox + width - 35);
     const double ly = m.Y(tail.y());
     o << "<text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 13) << "\" font-size=\"11\" fill=\"" << kReaction
-      << "\" text-anchor=\"middle\">H " << fg(re.force.x() / f.weight) << " W</text><text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 26)
-      << "\" font-size=\"11\" fill=\"" << kReaction << "\" text-anchor=\"middle\">V " << fg(re.force.y() / f.weight) << " W</text>\n";
+      << "\" text-anchor=\"middle\">H " << fmt::g(re.force.x() / f.weight) << " W</text><text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 26)
+      << "\" font-size=\"11\" fill=\"" << kReaction << "\" text-anchor=\"middle\">V " << fmt::g(re.force.y() / f.weight) << " W</text>\n";
   }
   // The imposed motion: a grey arrow beside each moving support (off to its side, clear of the
   // structure above it), along its translation, and an arc for a rotation (counter-clockwise
@@ -328,7 +316,7 @@ std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const
   o << "<g transform=\"translate(" << f1(gap) << "," << f1(ly + 22) << ")\"><line x1=\"0\" y1=\"0\" x2=\"" << f1(bar)
     << "\" y2=\"0\" stroke=\"" << kForce << "\" stroke-width=\"1.6\"/><line x1=\"0\" y1=\"-4\" x2=\"0\" y2=\"4\" stroke=\"" << kForce
     << "\"/><line x1=\"" << f1(bar) << "\" y1=\"-4\" x2=\"" << f1(bar) << "\" y2=\"4\" stroke=\"" << kForce << "\"/><text x=\"" << f1(bar + 8)
-    << "\" y=\"4\" font-size=\"12\">force scale: 0.1 W = " << kn(0.1 * f.weight) << " kN; hatched: supports</text></g>\n";
+    << "\" y=\"4\" font-size=\"12\">force scale: 0.1 W = " << fmt::kn(0.1 * f.weight) << " kN; hatched: supports</text></g>\n";
   o << "</svg>\n";
   return o.str();
 }
@@ -348,10 +336,10 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
   for (const SupportCurve& sc : k.supports) supports.push_back(sc.support);
   std::ostringstream o;
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"thrust\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 "
-    << f1(W) << " " << f1(H) << "\" font-family=\"Helvetica, Arial, sans-serif\" data-x0=\"" << f1(left) << "\" data-sx=\"" << fg(sx, 10)
+    << f1(W) << " " << f1(H) << "\" font-family=\"Helvetica, Arial, sans-serif\" data-x0=\"" << f1(left) << "\" data-sx=\"" << fmt::g(sx, 10)
     << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   o << "<text x=\"" << f1(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Support reactions over total weight W = "
-    << kn(W_n) << " kN</text>\n";
+    << fmt::kn(W_n) << " kN</text>\n";
   for (int comp = 0; comp < 2; ++comp) {
     const double oy = top + comp * (ph + between);
     // Value range over both runs, all supports, with zero included.
@@ -380,11 +368,11 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
     for (double v = std::ceil(lo / ty) * ty; v <= hi + 1e-12; v += ty)
       o << "<line x1=\"" << f1(left) << "\" x2=\"" << f1(left + pw) << "\" y1=\"" << f1(Y(v)) << "\" y2=\"" << f1(Y(v))
         << "\" stroke=\"" << (std::abs(v) < ty * 1e-6 ? "#999" : "#e6e6e6") << "\"/><text x=\"" << f1(left - 6) << "\" y=\"" << f1(Y(v) + 4)
-        << "\" text-anchor=\"end\">" << fg(std::abs(v) < ty * 1e-6 ? 0.0 : v) << "</text>\n";
+        << "\" text-anchor=\"end\">" << fmt::g(std::abs(v) < ty * 1e-6 ? 0.0 : v) << "</text>\n";
     const double tx = nice_step(dmax * 1000, 8) / 1000;
     for (double d = 0; d <= dmax + 1e-12; d += tx)
       o << "<line x1=\"" << f1(X(d)) << "\" x2=\"" << f1(X(d)) << "\" y1=\"" << f1(oy) << "\" y2=\"" << f1(oy + ph)
-        << "\" stroke=\"#eeeeee\"/><text x=\"" << f1(X(d)) << "\" y=\"" << f1(oy + ph + 14) << "\" text-anchor=\"middle\">" << fg(d * 1000, 4)
+        << "\" stroke=\"#eeeeee\"/><text x=\"" << f1(X(d)) << "\" y=\"" << f1(oy + ph + 14) << "\" text-anchor=\"middle\">" << fmt::g(d * 1000, 4)
         << "</text>\n";
     o << "<rect x=\"" << f1(left) << "\" y=\"" << f1(oy) << "\" width=\"" << f1(pw) << "\" height=\"" << f1(ph)
       << "\" fill=\"none\" stroke=\"#333\"/>\n";
@@ -396,7 +384,7 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
     const auto marks = [&](const RunSummary& rs, bool at_top, const char* dash) {
       for (double d : rs.changes)
         o << "<path d=\"M" << f1(X(d)) << "," << f1(at_top ? oy : oy + ph) << " l-4," << (at_top ? "-8" : "8") << " h8 z\" fill=\"#555\"><title>"
-          << xml_escape(rs.label) << ": mechanism changes at d = " << fg(d * 1000, 4) << " mm</title></path>\n";
+          << xml_escape(rs.label) << ": mechanism changes at d = " << fmt::g(d * 1000, 4) << " mm</title></path>\n";
       o << "<line x1=\"" << f1(X(rs.capacity)) << "\" x2=\"" << f1(X(rs.capacity)) << "\" y1=\"" << f1(oy) << "\" y2=\"" << f1(oy + ph)
         << "\" stroke=\"#555\" stroke-width=\"1\" stroke-dasharray=\"" << dash << "\"/>\n";
     };
