@@ -14,6 +14,19 @@ void make_ccw(std::vector<Vec2>& v) {
   if (signed_area(v) < 0) std::reverse(v.begin(), v.end());
 }
 
+// A support block under a springing joint a-b (intrados and extrados corners): its top face is
+// the joint, its base horizontal, `drop` below the lower corner.
+Block springing_support(const std::string& id, const Vec2& a, const Vec2& b, double drop, double depth) {
+  const double base = std::min(a.y(), b.y()) - drop;
+  Block s;
+  s.id = id;
+  s.support = true;
+  s.depth = depth;
+  s.vertices = {a, b, Vec2(b.x(), base), Vec2(a.x(), base)};
+  make_ccw(s.vertices);
+  return s;
+}
+
 // The last block is the right support; with `spreading` it moves outward (+x) per unit of d.
 void finish_arch(Case& c, bool spreading, double step, int max_steps) {
   c.motion.step = step;
@@ -40,15 +53,7 @@ Case circular_arch(const CircularArch& p) {
   const double ri = p.radius - p.thickness / 2, re = p.radius + p.thickness / 2;
   const double phi0 = M_PI / 2 + p.embrace / 2, dphi = p.embrace / p.voussoirs;
   auto support = [&](const std::string& id, double phi) {
-    const Vec2 a = polar(ri, phi), b = polar(re, phi);
-    const double base = std::min(a.y(), b.y()) - p.thickness;
-    Block s;
-    s.id = id;
-    s.support = true;
-    s.depth = p.depth;
-    s.vertices = {a, b, Vec2(b.x(), base), Vec2(a.x(), base)};
-    make_ccw(s.vertices);
-    return s;
+    return springing_support(id, polar(ri, phi), polar(re, phi), p.thickness, p.depth);
   };
   c.blocks.push_back(support("left", phi0));
   for (int k = 0; k < p.voussoirs; ++k) {
@@ -98,17 +103,7 @@ Case pointed_arch(const PointedArch& p) {
   Case c;
   c.source = "pointed-arch";
   c.name = "pointed arch";
-  auto support = [&](const std::string& id, int k) {
-    const Vec2 a = corner(k, ri), b = corner(k, re);
-    const double base = std::min(a.y(), b.y()) - t;
-    Block s;
-    s.id = id;
-    s.support = true;
-    s.depth = p.depth;
-    s.vertices = {a, b, Vec2(b.x(), base), Vec2(a.x(), base)};
-    make_ccw(s.vertices);
-    return s;
-  };
+  auto support = [&](const std::string& id, int k) { return springing_support(id, corner(k, ri), corner(k, re), t, p.depth); };
   c.blocks.push_back(support("left", 0));
   for (int k = 0; k < n; ++k) {
     Block v;

@@ -18,32 +18,12 @@ namespace {
 
 const char* kRunColors[] = {"#4a4a4a", "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00"};
 
-std::string mm(double m, int decimals = 0) {
-  if (!std::isfinite(m)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.*f", decimals, m * 1000);
-  return b;
-}
-std::string pct(double x) {
-  if (!std::isfinite(x)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%+.1f%%", x * 100);
-  return b;
-}
-std::string secs(double s) {
-  if (!std::isfinite(s)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, s < 10 ? "%.2f" : "%.0f", s);
-  return b;
-}
+std::string mm(double m, int decimals = 0) { return fmt::number(m, "%.*f", decimals, m * 1000); }
+std::string pct(double x) { return fmt::number(x, "%+.1f%%", x * 100); }
+std::string secs(double s) { return fmt::number(s, s < 10 ? "%.2f" : "%.0f", s); }
 ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 // A ratio without an exponent: 0.5, 12.3, 2270.
-std::string ratio(double x) {
-  if (!std::isfinite(x)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, x >= 100 ? "%.0f" : "%.3g", x);
-  return b;
-}
+std::string ratio(double x) { return fmt::number(x, x >= 100 ? "%.0f" : "%.3g", x); }
 
 const StepRecord* record_at(const RunResult& r, double d) {
   const auto recs = stable_records(r);

@@ -25,12 +25,7 @@ std::string f1(double x) {
   std::snprintf(b, sizeof b, "%.1f", std::isfinite(x) ? x : 0.0);
   return b;
 }
-std::string mm(double m) {
-  if (!std::isfinite(m)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.0f mm", m * 1000);
-  return b;
-}
+std::string mm(double m) { return fmt::number(m, "%.0f mm", m * 1000); }
 
 // Current position of a material point of block b (initial coordinates) at a record.
 struct Placer {
