@@ -377,4 +377,30 @@ std::string case_to_json(const Case& c) {
   return doc.dump(1, ' ') + "\n";
 }
 
+Case with_option(const Case& c, const std::string& key, const nlohmann::json& value) {
+  const std::string source = c.source + " [" + key + "=" + value.dump() + "]";
+  nlohmann::json doc = nlohmann::json::parse(case_to_json(c));
+  // Walk the dotted path through objects; the last name may be new (an optional field such as
+  // dem.kn), the loader rejects names it does not know.
+  nlohmann::json* at = &doc;
+  size_t start = 0;
+  while (true) {
+    const size_t dot = key.find('.', start);
+    const std::string name = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (name.empty()) throw CaseError(source + ": option: empty name in '" + key + "'");
+    if (name == "blocks" || name == "loads" || name == "format")
+      throw CaseError(source + ": option: '" + name + "' is not an option (only scalar settings can be varied)");
+    if (dot == std::string::npos) {
+      if (!at->is_object()) throw CaseError(source + ": option: '" + key + "' does not name a field");
+      (*at)[name] = value;
+      break;
+    }
+    if (!at->is_object() || !at->contains(name) || !(*at)[name].is_object())
+      throw CaseError(source + ": option: '" + key + "': no section '" + name + "'");
+    at = &(*at)[name];
+    start = dot + 1;
+  }
+  return parse_case(doc.dump(), source);
+}
+
 }  // namespace masonry

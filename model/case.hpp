@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -88,6 +89,12 @@ Case parse_case(const std::string& text, const std::string& source);
 Case load_case(const std::string& path);
 // Serialises a case to the masonry-case/1 JSON format (deterministic, round-trips).
 std::string case_to_json(const Case& c);
+
+// The case with one option changed: `key` is a dotted path into the masonry-case/1 format
+// ("dem.friction_angle", "motion.step", "prd.contact_tolerance", "gravity"; blocks and loads are
+// not options). The result is parsed and validated again, so a bad value gets the loader's
+// one-line error; the source is named as "FILE [key=value]". Throws CaseError.
+Case with_option(const Case& c, const std::string& key, const nlohmann::json& value);
 
 // Geometric validity of the blocks alone (vertex count, area, self-intersection, overlaps,
 // finite numbers); throws CaseError. parse_case calls it; generators call it too.

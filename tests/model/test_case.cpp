@@ -248,3 +248,34 @@ TEST(Interfaces, WallOfBricksMatchesCounting) {
 
 }  // namespace
 }  // namespace masonry
+
+// with_option: one setting changed through the file format, validated like a loaded file.
+TEST(WithOption, ChangesOneSettingAndKeepsTheRest) {
+  const masonry::Case c = masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/pointed-arch.json");
+  const masonry::Case d = masonry::with_option(c, "dem.friction_angle", 20.0);
+  EXPECT_DOUBLE_EQ(d.dem.friction_angle, 20.0);
+  EXPECT_DOUBLE_EQ(d.motion.step, c.motion.step);
+  ASSERT_EQ(d.blocks.size(), c.blocks.size());
+  const masonry::Case e = masonry::with_option(c, "dem.kn", 1e9);  // optional field, absent before
+  ASSERT_TRUE(e.dem.kn.has_value());
+  EXPECT_DOUBLE_EQ(*e.dem.kn, 1e9);
+  EXPECT_DOUBLE_EQ(masonry::with_option(c, "motion.step", 0.004).motion.step, 0.004);
+}
+
+TEST(WithOption, BadKeysAndValuesGetTheLoadersError) {
+  const masonry::Case c = masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/pointed-arch.json");
+  auto message = [&](const std::string& key, const nlohmann::json& v) {
+    try {
+      masonry::with_option(c, key, v);
+    } catch (const masonry::CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("dem.friction_angle", 120.0).find("friction_angle"), std::string::npos);
+  EXPECT_NE(message("dem.friction_angle", 120.0).find("[dem.friction_angle=120.0]"), std::string::npos);
+  EXPECT_NE(message("dem.frictoin", 30.0).find("frictoin"), std::string::npos);
+  EXPECT_NE(message("nosuch.x", 1.0).find("no section 'nosuch'"), std::string::npos);
+  EXPECT_NE(message("blocks", 1.0).find("not an option"), std::string::npos);
+  EXPECT_NE(message("motion.step", "big").find("step"), std::string::npos);
+}
