@@ -18,5 +18,7 @@ void add_prd_commands(CLI::App& app, Commands& out);    // prd/cli.cpp: prd, che
 void add_case_commands(CLI::App& app, Commands& out);   // cases/cli.cpp: cases
 void add_dem_commands(CLI::App& app, Commands& out);    // dem/cli.cpp: dem
 void add_compare_commands(CLI::App& app, Commands& out);  // compare/cli.cpp: compare, demo
+void add_sweep_commands(CLI::App& app, Commands& out);    // sweep/cli.cpp: sweep
+void add_tradeoff_commands(CLI::App& app, Commands& out); // tradeoff/cli.cpp: tradeoff
 
 }  // namespace masonry

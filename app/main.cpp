@@ -20,6 +20,12 @@ int main(int argc, char** argv) {
 #ifdef MASONRY_HAVE_COMPARE_CLI
   masonry::add_compare_commands(app, commands);
 #endif
+#ifdef MASONRY_HAVE_SWEEP_CLI
+  masonry::add_sweep_commands(app, commands);
+#endif
+#ifdef MASONRY_HAVE_TRADEOFF_CLI
+  masonry::add_tradeoff_commands(app, commands);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
