@@ -28,7 +28,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   sub->add_option("--hold-time", o->hold, "Model-time budget of each hold, s (default 3)");
   sub->add_option("--step", o->step, "Increment of the support path parameter d, m (case: motion.step)");
   sub->add_option("--max-steps", o->max_steps, "Number of increments at most (case: motion.max_steps)");
-  sub->add_option("--move-time", o->move_time, "Model time to travel one increment, s (default 0.2)");
+  sub->add_option("--move-time", o->move_time, "Model time to travel one increment, s (default: the case's dem.move_time)");
   sub->add_option("--ramp-fraction", o->ramp, "Fraction of the move time spent speeding up (and slowing down), 0..0.5 (default 0.25; 0: abrupt)");
   sub->add_option("--collapse-drift", o->drift, "Block travel within an unsettled hold that means collapse, m (default 2% of scene)");
   sub->add_option("--open-gap", o->open_gap, "Gap above which a joint corner is open, m (default prd.contact_tolerance)");

@@ -62,6 +62,9 @@ DemSettings DemSettings::from_case(const Case& c) {
   s.equilibrium_tolerance = c.dem.equilibrium_tolerance;
   s.velocity_tolerance = c.dem.velocity_tolerance;
   s.hold_time = c.dem.hold_time;
+  s.move_time = c.dem.move_time;
+  s.ramp_fraction = c.dem.ramp_fraction;
+  s.collapse_drift = c.dem.collapse_drift;
   s.step = c.motion.step;
   s.max_steps = c.motion.max_steps;
   return s;

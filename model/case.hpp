@@ -67,6 +67,12 @@ struct DemOptions {
   double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight
   double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
   double hold_time = 3.0;               // model time budget per hold, s
+  // The loading protocol (dem/README.md): model time to travel one increment (s), the share of
+  // it spent on half-cosine speed ramps at each end, and the drift during a hold that counts as
+  // collapse (m; 0 means 2% of the scene size).
+  double move_time = 0.2;
+  double ramp_fraction = 0.25;
+  double collapse_drift = 0.0;
 };
 
 struct Case {
