@@ -119,6 +119,13 @@ struct Reader {
     return Vec2(number(v[0], where, field), number(v[1], where, field));
   }
 
+  bool boolean(const json& obj, const std::string& where, const char* field, bool dflt) const {
+    auto it = obj.find(field);
+    if (it == obj.end()) return dflt;
+    if (!it->is_boolean()) fail(where, std::string("field '") + field + "' must be true or false");
+    return it->get<bool>();
+  }
+
   std::string string(const json& obj, const std::string& where, const char* field,
                      const std::string& dflt) const {
     auto it = obj.find(field);
@@ -260,9 +267,15 @@ Case parse_case(const std::string& text, const std::string& source) {
 
   if (doc.contains("prd")) {
     const json& jp = doc["prd"];
-    r.only(jp, "prd", {"contact_tolerance"});
+    r.only(jp, "prd", {"contact_tolerance", "adaptive", "event_tolerance", "max_step", "sliding_check"});
+    c.prd.sliding_check = r.boolean(jp, "prd", "sliding_check", c.prd.sliding_check);
     c.prd.contact_tolerance = r.number(jp, "prd", "contact_tolerance", c.prd.contact_tolerance);
     if (!(c.prd.contact_tolerance > 0)) r.fail("prd", "field 'contact_tolerance' must be positive");
+    c.prd.adaptive = r.boolean(jp, "prd", "adaptive", c.prd.adaptive);
+    c.prd.event_tolerance = r.number(jp, "prd", "event_tolerance", c.prd.event_tolerance);
+    c.prd.max_step = r.number(jp, "prd", "max_step", c.prd.max_step);
+    if (!(c.prd.event_tolerance >= 0)) r.fail("prd", "field 'event_tolerance' must be >= 0 (0: 1e-4 of the scene size)");
+    if (!(c.prd.max_step >= 0)) r.fail("prd", "field 'max_step' must be >= 0 (0: 16 motion.step)");
   }
 
   if (doc.contains("dem")) {
@@ -368,7 +381,11 @@ std::string case_to_json(const Case& c) {
                    {"rotation", s.rotation},
                    {"about", {s.about.x(), s.about.y()}}});
   doc["motion"] = {{"step", c.motion.step}, {"max_steps", c.motion.max_steps}, {"supports", sup}};
-  doc["prd"] = {{"contact_tolerance", c.prd.contact_tolerance}};
+  doc["prd"] = {{"contact_tolerance", c.prd.contact_tolerance},
+                {"adaptive", c.prd.adaptive},
+                {"event_tolerance", c.prd.event_tolerance},
+                {"max_step", c.prd.max_step},
+                {"sliding_check", c.prd.sliding_check}};
   ordered_json dem = {{"young_modulus", c.dem.young_modulus},
               {"poisson", c.dem.poisson},
               {"friction_angle", c.dem.friction_angle},

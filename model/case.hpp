@@ -53,6 +53,15 @@ struct PrdOptions {
   // Length (m) below which an endpoint's gap counts as closed; also the geometric tolerance of
   // interface detection.
   double contact_tolerance = 1e-5;
+  // Event-driven stepping (prd/prd.hpp): large steps while the mechanism stays the same, each
+  // change of mechanism located to `event_tolerance` (m; 0: 1e-4 of the scene size, 0.1 mm
+  // for a metre-size scene) by bisection; steps up to `max_step` (m; 0: 16 motion.step).
+  bool adaptive = false;
+  double event_tolerance = 0.0;
+  double max_step = 0.0;
+  // The sliding check on every step (friction demand and the least friction angle an
+  // admissible force state needs; prd/prd.hpp).
+  bool sliding_check = false;
 };
 
 struct DemOptions {

@@ -37,23 +37,66 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     auto step = std::make_shared<double>(0.0);
     auto max_steps = std::make_shared<int>(-1);
     auto tol = std::make_shared<double>(0.0);
+    auto adaptive = std::make_shared<bool>(false);
+    auto event_tol = std::make_shared<double>(0.0);
+    auto max_step = std::make_shared<double>(0.0);
+    auto sliding = std::make_shared<bool>(false);
+    auto friction = std::make_shared<double>(-1.0);
     sub->add_option("case", *path, "Case file (JSON, masonry-case/1)")->required();
     sub->add_option("--out", *dir, "Output directory: results.json and steps.csv")->required();
     sub->add_option("--step", *step, "Increment of d per step, m (default: the case's motion.step)")->check(CLI::PositiveNumber);
     sub->add_option("--max-steps", *max_steps, "Largest number of steps (default: the case's motion.max_steps)")->check(CLI::NonNegativeNumber);
     sub->add_option("--tolerance", *tol, "Contact tolerance, m (default: the case's prd.contact_tolerance)")->check(CLI::PositiveNumber);
+    sub->add_flag("--adaptive", *adaptive,
+                  "Event-driven steps: long while the mechanism holds, each event located to --event-tolerance");
+    sub->add_option("--event-tolerance", *event_tol,
+                    "With --adaptive: how closely events are located, m (default 1e-4 of the scene size)")
+        ->check(CLI::PositiveNumber);
+    sub->add_option("--max-step", *max_step, "With --adaptive: the longest step, m (default 16 x --step)")
+        ->check(CLI::PositiveNumber);
+    sub->add_flag("--sliding", *sliding,
+                  "Sliding check on every step: friction demand of the joint forces and the least friction angle "
+                  "an admissible force state needs (results: extra \"sliding\")");
+    sub->add_option("--friction-angle", *friction,
+                    "Report the first step and joint where the friction demand exceeds this angle, deg (implies --sliding)")
+        ->check(CLI::Range(0.0, 90.0));
     out.push_back({sub, [=]() {
                      Case c = load_case(*path);
                      PrdSettings s = PrdSettings::from_case(c);
+                     if (*sliding || *friction >= 0) s.sliding_check = true;
                      if (*step > 0) s.step = *step;
                      if (*max_steps >= 0) s.max_steps = *max_steps;
                      if (*tol > 0) s.contact_tolerance = *tol;
+                     if (*adaptive) s.adaptive = true;
+                     if (*event_tol > 0) s.event_tolerance = *event_tol;
+                     if (*max_step > 0) s.max_step = *max_step;
                      ThrottledWriter w{*dir, &c};
                      RunResult r = prd_run(c, s, [&](const RunResult& x) { w(x, false); });
                      w(r, true);
                      std::cerr << "prd: " << c.name << ": " << r.stopped << (r.message.empty() ? "" : " (" + r.message + ")")
                                << ", capacity " << r.capacity << " m after " << r.stable_steps << " steps, "
                                << r.timing.total_s << " s (" << r.timing.lp_solves << " LPs); results in " << *dir << "\n";
+                     if (s.sliding_check && r.extra.contains("sliding") && r.extra["sliding"].contains("required_friction_angle")) {
+                       const auto& x = r.extra["sliding"];
+                       std::cerr << "prd: sliding check: some admissible force state avoids sliding at every step for friction angles above "
+                                 << x["required_friction_angle"].get<double>() << " deg (the most demanding: d = " << x["d"].get<double>()
+                                 << " m, joint " << x["joint"].get<std::string>() << ")\n";
+                     }
+                     if (*friction >= 0) {
+                       // Two answers: where the dual's own forces need more friction than the
+                       // angle, and where every admissible force state does (sliding is then
+                       // certain, whatever the force distribution).
+                       for (bool required : {false, true}) {
+                         const auto e = first_sliding(c, r, *friction, required);
+                         std::cerr << "prd: " << (required ? "every admissible force state" : "the dual force state")
+                                   << " needs more than " << *friction << " deg of friction ";
+                         if (e)
+                           std::cerr << "first at step " << e->step << ", d = " << e->d << " m, joint " << e->blocks << " ("
+                                     << e->angle << " deg)\n";
+                         else
+                           std::cerr << "at no step\n";
+                       }
+                     }
                      return r.stopped == "error" ? 1 : 0;
                    }});
   }

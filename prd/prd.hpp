@@ -15,8 +15,19 @@ namespace masonry {
 
 struct PrdSettings {
   double step = 0.001;              // increment of d per step, m
-  int max_steps = 1000;
+  int max_steps = 1000;             // the run ends at d = max_steps * step
   double contact_tolerance = 1e-5;  // m: a corner with a gap below this is closed
+  // Event-driven stepping: steps grow (doubling, up to max_step) while the mechanism stays the
+  // same; a change of mechanism (a corner opening or closing) or collapse found at the end of
+  // a step longer than event_tolerance is bracketed again by halving the step, so every event
+  // is located within event_tolerance. Whether a closed corner opens is judged by its opening
+  // rate over `step`, so the contact state does not depend on the step being taken.
+  bool adaptive = false;
+  double event_tolerance = 0.0;     // m; <= 0: 1e-4 of the scene size
+  double max_step = 0.0;            // m; <= 0: 16 * step
+  // The sliding check on every recorded step (extra["sliding"] of each step; summary in the
+  // run's extra["sliding"], see sliding_summary). Angles in degrees, as friction angles are.
+  bool sliding_check = false;
   static PrdSettings from_case(const Case& c);
 };
 
@@ -37,5 +48,25 @@ PrdCheck prd_check(const Case& c, double contact_tolerance);
 // the initial configuration) with the result so far, so the caller can write it as it goes.
 RunResult prd_run(const Case& c, const PrdSettings& s,
                   const std::function<void(const RunResult&)>& on_step = {});
+
+// The sliding check's answer for a whole run, from its records' extra["sliding"]:
+//   required_friction_angle (deg): the largest over the steps of the smallest friction angle
+//     for which the step admits a force state without sliding: below it PRD's no-sliding
+//     assumption fails somewhere before collapse; with d (m), step and joint ("i/j") where
+//     that happens;
+//   max_demand_angle (deg), demand_d, demand_joint: the same for the dual force state alone.
+// Empty when no step carries the check.
+nlohmann::ordered_json sliding_summary(const Case& c, const RunResult& r);
+
+// The first step where the friction demand (required = false: of the dual forces; true: of
+// the best admissible state) exceeds angle_deg.
+struct SlidingExceedance {
+  int step = 0;
+  double d = 0.0;       // m
+  double angle = 0.0;   // deg
+  int joint = -1;
+  std::string blocks;   // "i/j" block ids
+};
+std::optional<SlidingExceedance> first_sliding(const Case& c, const RunResult& r, double angle_deg, bool required);
 
 }  // namespace masonry

@@ -13,6 +13,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <memory>
 #include <stdexcept>
 
@@ -165,6 +167,9 @@ std::vector<double> generalised_loads(const Model& m) {
 // Rewrites every row, bound and objective coefficient for the current configuration and a
 // support step h (0 for the analysis as it stands). The problem's structure never changes.
 void update_lp(Model& m, double h, double scale) {
+  // GLPK aborts the process on a non-finite or zero scale; this is the one place to stop it.
+  if (!(scale > 0) || !std::isfinite(scale) || !(h >= 0) || !std::isfinite(h))
+    throw std::logic_error(std::string("prd: invalid step for the LP (m): ").append(std::to_string(h)));
   glp_prob* lp = m.lp.get();
   const std::vector<double> f = generalised_loads(m);
   for (int j = 1; j <= m.ncols; ++j) glp_set_obj_coef(lp, j, -f[j]);
@@ -216,6 +221,13 @@ void update_lp(Model& m, double h, double scale) {
   }
 }
 
+// glp_adv_basis prints whatever msg_lev says; the harness's output is its own.
+void quiet_adv_basis(glp_prob* lp) {
+  const int was = glp_term_out(GLP_OFF);
+  glp_adv_basis(lp, 0);
+  glp_term_out(was);
+}
+
 // Runs the primal simplex from the previous step's basis (the warm start that makes a run
 // fast). Degenerate LPs can stall; an iteration limit catches that, and the solve is repeated
 // from a fresh basis with the textbook ratio test, then, as a last resort, in exact rational
@@ -234,12 +246,12 @@ int solve(Model& m) {
   const auto t0 = Clock::now();
   int rc = glp_simplex(lp, &parm);
   if (!conclusive(rc)) {
-    glp_adv_basis(lp, 0);
+    quiet_adv_basis(lp);
     parm.r_test = GLP_RT_STD;
     rc = glp_simplex(lp, &parm);
   }
   if (!conclusive(rc)) {
-    glp_adv_basis(lp, 0);
+    quiet_adv_basis(lp);
     rc = glp_exact(lp, &parm);
   }
   m.lp_s += seconds_since(t0);
@@ -374,6 +386,154 @@ nlohmann::ordered_json collapse_mechanism(Model& m, double scale) {
   return out;
 }
 
+// The sliding check of one configuration (PrdSettings::sliding_check). PRD's kinematics forbid
+// sliding, so its forces need not respect any friction limit; the question is how much
+// friction they need.
+//  - demand: |T|/N of each joint resultant of the step's dual forces, as an angle, largest
+//    over the joints. The dual state is one admissible state among many.
+//  - required: the smallest friction angle for which SOME admissible state avoids sliding:
+//    forces only at closed corners (f_n >= 0), one shear per joint in contact, equilibrium
+//    with the loads on the current geometry, and |T_j| <= mu N_j at every joint. For a given
+//    mu that is a linear feasibility problem, so mu is found by bisection between 0 and the
+//    dual state's demand (feasible by construction).
+struct SlidingLp {
+  std::unique_ptr<glp_prob, GlpDeleter> lp{glp_create_prob()};
+  long long solves = 0;
+};
+
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+
+void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec) {
+  // Demand of the dual state.
+  double demand = 0;
+  int demand_joint = -1;
+  for (const JointForce& f : rec.forces) {
+    const double a = f.normal > 0 ? std::atan(std::abs(f.shear) / f.normal) : (f.shear != 0 ? M_PI / 2 : 0.0);
+    if (a > demand) demand = a, demand_joint = f.joint;
+  }
+
+  // The feasibility LP: columns f_n per closed corner, then f_t per joint in contact; rows:
+  // equilibrium of each free block (numbered as the PRD LP's columns), then two friction rows
+  // per joint in contact.
+  glp_prob* lp = S.lp.get();
+  glp_erase_prob(lp);
+  const int nrows_eq = m.ncols;
+  std::vector<int> ia{0}, ja{0};
+  std::vector<double> ar{0.0};
+  std::vector<int> fn_col(m.ends.size(), 0), ft_col(m.joints.size(), 0);
+  std::vector<int> joints_in_contact;
+  int ncols = 0;
+  auto add_force = [&](int col, int b, const Vec2& F, const Vec2& p) {
+    if (m.col[b] < 0) return;
+    const int k = m.col[b];
+    const double v[3] = {F.x(), F.y(), cross(p - m.cen[b], F) / m.radius[b]};
+    for (int r = 0; r < 3; ++r)
+      if (v[r] != 0) ia.push_back(k + r), ja.push_back(col), ar.push_back(v[r]);
+  };
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    if (!m.ends[e].closed) continue;
+    const Endpoint& ep = m.ends[e];
+    const Interface& jt = m.joints[ep.joint];
+    const Vec2 n = m.normal(ep), p = 0.5 * (m.pos(jt.i, ep.X) + m.pos(jt.j, ep.X));
+    fn_col[e] = ++ncols;
+    add_force(ncols, jt.j, n, p);
+    add_force(ncols, jt.i, -n, p);
+    if (m.sliding_row(e)) {  // the joint's shear acts along its line, at any of its points
+      ft_col[ep.joint] = ++ncols;
+      add_force(ncols, jt.j, perp(n), p);
+      add_force(ncols, jt.i, -perp(n), p);
+      joints_in_contact.push_back(ep.joint);
+    }
+  }
+  if (ncols == 0 || nrows_eq == 0) return;
+  glp_add_cols(lp, ncols);
+  for (int j = 1; j <= ncols; ++j) glp_set_col_bnds(lp, j, GLP_LO, 0, 0);
+  for (int jt : joints_in_contact) glp_set_col_bnds(lp, ft_col[jt], GLP_FR, 0, 0);
+  glp_add_rows(lp, nrows_eq + 2 * static_cast<int>(joints_in_contact.size()));
+  const std::vector<double> f = generalised_loads(m);
+  for (int r = 1; r <= nrows_eq; ++r) glp_set_row_bnds(lp, r, GLP_FX, -f[r], -f[r]);
+  for (size_t q = 0; q < joints_in_contact.size(); ++q)
+    for (int s = 0; s < 2; ++s) glp_set_row_bnds(lp, nrows_eq + 2 * static_cast<int>(q) + 1 + s, GLP_UP, 0, 0);
+  glp_load_matrix(lp, static_cast<int>(ia.size()) - 1, ia.data(), ja.data(), ar.data());
+
+  std::vector<int> ind;
+  std::vector<double> val;
+  auto set_mu = [&](double mu) {
+    for (size_t q = 0; q < joints_in_contact.size(); ++q) {
+      const int jt = joints_in_contact[q];
+      for (int s = 0; s < 2; ++s) {
+        ind.assign(1, 0);
+        val.assign(1, 0.0);
+        ind.push_back(ft_col[jt]), val.push_back(s == 0 ? 1.0 : -1.0);
+        for (int c = 0; c < 2; ++c)
+          if (fn_col[2 * jt + c]) ind.push_back(fn_col[2 * jt + c]), val.push_back(-mu);
+        glp_set_mat_row(lp, nrows_eq + 2 * static_cast<int>(q) + 1 + s, static_cast<int>(ind.size()) - 1, ind.data(),
+                        val.data());
+      }
+    }
+  };
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  parm.it_lim = 1000 + 50 * (glp_get_num_rows(lp) + ncols);
+  bool fresh = true;
+  auto feasible = [&](double mu) {
+    set_mu(mu);
+    if (fresh) glp_std_basis(lp), fresh = false;
+    ++S.solves;
+    int rc = glp_simplex(lp, &parm);
+    if (rc != 0) {  // a stalled warm start: once more from the standard basis
+      glp_std_basis(lp);
+      rc = glp_simplex(lp, &parm);
+    }
+    return rc == 0 && glp_get_status(lp) == GLP_OPT;
+  };
+  // The binding joint of a feasible state: the largest |T|/N.
+  auto binding = [&]() {
+    int best = -1;
+    double worst = -1;
+    for (int jt : joints_in_contact) {
+      double N = 0;
+      for (int c = 0; c < 2; ++c)
+        if (fn_col[2 * jt + c]) N += glp_get_col_prim(lp, fn_col[2 * jt + c]);
+      const double T = std::abs(glp_get_col_prim(lp, ft_col[jt]));
+      const double ratio = N > 0 ? T / N : (T > 0 ? 1e300 : 0);
+      if (ratio > worst) worst = ratio, best = jt;
+    }
+    return best;
+  };
+
+  // Where the force state is unique (a mechanism leaves the moving part statically
+  // determinate) no state does better than the dual one: one LP just below its demand shows it.
+  constexpr double resolution = 0.01 / kDeg;  // rad
+  double lo = 0, hi = std::tan(std::min(demand, 89.9 / kDeg));
+  int required_joint = demand_joint;
+  if (demand > resolution && !feasible(std::tan(demand - resolution))) {
+    lo = hi;
+  } else if (feasible(0)) {
+    hi = 0;  // no shear needed anywhere
+  } else {
+    // The dual state is admissible, so hi is feasible but for round-off; widen it if needed.
+    bool ok = false;
+    for (int widen = 0; !(ok = feasible(hi)) && widen < 20; ++widen) hi = std::max(2 * hi, 1e-3);
+    if (!ok) return;  // no admissible state found: leave the field out rather than guess
+    required_joint = binding();
+    while (std::atan(hi) - std::atan(lo) > resolution) {
+      const double mid = 0.5 * (lo + hi);
+      if (feasible(mid)) {
+        hi = mid;
+        required_joint = binding();
+      } else {
+        lo = mid;
+      }
+    }
+  }
+  rec.extra["sliding"] = {{"demand_angle", demand * kDeg},
+                          {"demand_joint", demand_joint},
+                          {"required_angle", std::atan(hi) * kDeg},
+                          {"required_joint", required_joint}};
+}
+
 void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
   // Strong duality: the primal optimum equals sum(dual * bound) over the active rows.
   glp_prob* lp = m.lp.get();
@@ -387,6 +547,120 @@ void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
   rec.extra["lp_dual"] = dual * scale;
 }
 
+// Per endpoint, from the LP just solved with step h: the gap on the current configuration and
+// its rate of change along the mechanism (m per m of d).
+void gaps_and_rates(const Model& m, double h, std::vector<double>& gap, std::vector<double>& rate) {
+  const std::vector<double> after = slacks(m, h);
+  gap.resize(m.ends.size());
+  rate.resize(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    const Endpoint& ep = m.ends[e];
+    const Interface& jt = m.joints[ep.joint];
+    gap[e] = (m.pos(jt.j, ep.X) - m.pos(jt.i, ep.X)).dot(m.normal(ep));
+    rate[e] = (after[e] - gap[e]) / h;
+  }
+}
+
+// Contact state after a step h along the mechanism of the LP solved with step h_lp. An open
+// corner closes when its gap at the end of the step is below the tolerance. A closed corner
+// opens when it would open by more than the tolerance over the reference step h_ref: its gap
+// at the end of the LP's step (the residual gap of earlier finite updates is taken back in
+// that step) scaled to h_ref, so the state does not depend on the step being taken. With
+// h = h_lp = h_ref both rules are "gap at the end of the step below the tolerance".
+std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, const std::vector<double>& rate,
+                               double h_lp, double h, double h_ref) {
+  std::vector<char> out(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e)
+    out[e] = m.ends[e].closed ? (gap[e] + rate[e] * h_lp) * (h_ref / h_lp) <= m.tol : gap[e] + rate[e] * h <= m.tol;
+  return out;
+}
+
+// The finite update by h along the mechanism U (column values per unit of d): every free
+// block rotates about its own pole, supports move as prescribed.
+void advance(Model& m, const std::vector<double>& U, double h) {
+  const Case& c = *m.c;
+  for (size_t b = 0; b < c.blocks.size(); ++b) {
+    if (m.col[b] > 0) {
+      const Vec2 u(U[m.col[b]] * h, U[m.col[b] + 1] * h);
+      const double th = U[m.col[b] + 2] * h / m.radius[b];
+      m.cen[b] += pole_displacement(u, th);
+      m.angle[b] += th;
+    } else if (m.motion_of[b] >= 0) {
+      const Increment inc = support_increment(m, static_cast<int>(b), h);
+      m.cen[b] = inc.at + rot(inc.th) * (m.cen[b] - inc.at) + inc.u;
+      m.angle[b] += inc.th;
+    }
+  }
+}
+
+std::vector<double> column_values(const Model& m) {
+  std::vector<double> U(m.ncols + 1, 0.0);
+  for (int j = 1; j <= m.ncols; ++j) U[j] = glp_get_col_prim(m.lp.get(), j);
+  return U;
+}
+
+// A configuration the run accepted, with what it takes to step from it again.
+struct Accepted {
+  double d = 0;
+  int index = 0;
+  std::vector<Vec2> cen;
+  std::vector<double> angle;
+  std::vector<char> closed;        // the contact state its LP used
+  std::vector<double> U, gap, rate;  // its LP's mechanism, gaps and their rates
+  double h_lp = 0;                   // the step its LP was solved with
+  std::vector<double> fn;            // its LP's normal force at each corner, N
+  bool event = false;                // its LP changed the mechanism
+};
+
+// Where the next event is expected along the current mechanism, as distances in d from the
+// configuration a: an open corner closes where its gap, shrinking at its rate, reaches the
+// tolerance; a closed corner opens where its normal force, extrapolated from the previous
+// configuration b on the same mechanism (same basis, so the force varies smoothly), reaches 0.
+struct Prediction {
+  double to_open = std::numeric_limits<double>::infinity();
+  double to_close = std::numeric_limits<double>::infinity();
+};
+
+Prediction predict_event(const Model& m, const Accepted& a, const Accepted* b) {
+  Prediction p;
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    if (!a.closed[e]) {
+      if (a.rate[e] < 0) p.to_close = std::min(p.to_close, std::max(a.gap[e] - m.tol, 0.0) / -a.rate[e]);
+    } else if (b && b->closed[e] && a.d > b->d) {
+      const double slope = (a.fn[e] - b->fn[e]) / (a.d - b->d);
+      if (a.fn[e] > 0 && slope < 0) p.to_open = std::min(p.to_open, a.fn[e] / -slope);
+    }
+  }
+  return p;
+}
+
+void set_closed(Model& m, const std::vector<char>& closed) {
+  for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = closed[e];
+}
+
+StepRecord configuration_record(const Model& m, int index, double d) {
+  StepRecord rec;
+  rec.index = index;
+  rec.d = d;
+  rec.poses = poses(m);
+  rec.energy = energy(m);
+  record_corners(m, rec);
+  return rec;
+}
+
+nlohmann::ordered_json event_json(const Model& m, const char* kind, double d, double within,
+                                  const std::vector<size_t>& corners) {
+  nlohmann::ordered_json ev = {{"kind", kind}, {"d", d}, {"within", within}};
+  ev["joints"] = nlohmann::ordered_json::array();
+  for (size_t e : corners) {
+    const Interface& jt = m.joints[m.ends[e].joint];
+    ev["joints"].push_back({{"joint", m.ends[e].joint},
+                            {"corner", m.ends[e].corner == 0 ? "A" : "B"},
+                            {"blocks", {m.c->blocks[jt.i].id, m.c->blocks[jt.j].id}}});
+  }
+  return ev;
+}
+
 }  // namespace
 
 PrdSettings PrdSettings::from_case(const Case& c) {
@@ -394,6 +668,10 @@ PrdSettings PrdSettings::from_case(const Case& c) {
   s.step = c.motion.step;
   s.max_steps = c.motion.max_steps;
   s.contact_tolerance = c.prd.contact_tolerance;
+  s.adaptive = c.prd.adaptive;
+  s.event_tolerance = c.prd.event_tolerance;
+  s.max_step = c.prd.max_step;
+  s.sliding_check = c.prd.sliding_check;
   return s;
 }
 
@@ -430,12 +708,26 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   if (!(s.step > 0) || !std::isfinite(s.step)) throw std::invalid_argument("prd: the step must be a positive number");
   if (s.max_steps < 0) throw std::invalid_argument("prd: max_steps must not be negative");
   if (!(s.contact_tolerance > 0)) throw std::invalid_argument("prd: the contact tolerance must be positive");
+  if (!std::isfinite(s.event_tolerance) || !std::isfinite(s.max_step))
+    throw std::invalid_argument("prd: the event tolerance and the largest step must be finite");
   const auto t_start = Clock::now();
   double io_s = 0;
   RunResult r;
   r.method = "prd";
   r.case_name = c.name;
+  // A fixed-step run is the event-driven one with every step accepted: the step never changes
+  // and no event is bracketed more finely than one step.
+  const double h_ref = s.step;
+  const double tol_ev = !s.adaptive ? h_ref : s.event_tolerance > 0 ? s.event_tolerance : 1e-4 * scene_size(c);
+  const double h_max = !s.adaptive ? h_ref : std::max(s.max_step > 0 ? s.max_step : 16 * h_ref, tol_ev);
+  const double d_end = s.max_steps * h_ref;
   r.settings = {{"step", s.step}, {"max_steps", s.max_steps}, {"contact_tolerance", s.contact_tolerance}};
+  if (s.adaptive) {
+    r.settings["adaptive"] = true;
+    r.settings["event_tolerance"] = tol_ev;
+    r.settings["max_step"] = h_max;
+  }
+  r.extra["events"] = nlohmann::ordered_json::array();
   Model m = build_model(c, s.contact_tolerance);
   r.joints = joint_infos(m);
   r.total_weight = total_weight(m);
@@ -456,70 +748,194 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   // d_{k+1}): its duals are the forces in equilibrium on d_k, and a bounded optimum is what
   // makes d_k stable. An unbounded LP on d_k means d_k admits a collapse mechanism: the
   // capacity is then d_{k-1}, the last configuration with an admissible force state.
-  StepRecord rec;
-  rec.poses = poses(m);
+  //
+  // Events. A corner that opens, or the collapse, is a property of the configuration the LP is
+  // solved on: seen on d_k, it happened in (d_{k-1}, d_k]. If that step was longer than the
+  // tolerance, the run goes back to d_{k-1} and steps half the bracket along d_{k-1}'s
+  // mechanism (no LP needed for the move), and so on until the bracket is within tolerance.
+  // A corner that closes does so during the step being taken: the step is halved until it is
+  // within tolerance.
+  Accepted cur;
+  SlidingLp sliding;
+  std::optional<Accepted> prev;
+  StepRecord rec = configuration_record(m, 0, 0.0);
+  double h_in = 0;                                          // the step that led to cur
+  double seen = std::numeric_limits<double>::infinity();    // d where an event was seen, not yet located
+  double h_next = h_ref;
+  std::vector<double> gap, rate;
   try {
-    for (int k = 0;; ++k) {
-      update_lp(m, s.step, s.step);
-      const int st = m.ncols == 0 ? GLP_OPT : solve(m);
-      if (st == GLP_UNBND) {
-        r.collapsed = true;
-        r.stopped = "collapse";
-        r.extra["collapse"] = collapse_mechanism(m, s.step);
-        r.extra["collapse"]["d"] = k * s.step;
-        r.extra["collapse"]["poses"] = nlohmann::ordered_json::array();
-        for (const Pose& p : rec.poses) r.extra["collapse"]["poses"].push_back({p.x, p.y, p.angle});
-        if (k == 0) r.message = "unstable as it stands";
-        break;
+    for (;;) {
+      double h = h_next;
+      if (s.adaptive) {
+        // Halve the open bracket, or close it once it is small; at its end, step on.
+        const double rem = seen - cur.d;
+        if (std::isfinite(seen) && rem > 1e-9 * h_ref) h = rem > tol_ev ? rem / 2 : rem;
+        if (d_end - cur.d > 1e-9 * h_ref) h = std::min(h, d_end - cur.d);
       }
-      if (st != GLP_OPT) {
+      update_lp(m, h, h);
+      const int st = m.ncols == 0 ? GLP_OPT : solve(m);
+      if (st != GLP_OPT && st != GLP_UNBND) {
         r.stopped = "error";
-        r.message = "d = " + std::to_string(k * s.step) +
+        r.message = "d = " + std::to_string(cur.d) +
                     " m: the LP is infeasible: the prescribed motion cannot be accommodated without penetration";
         break;
       }
+      std::vector<size_t> opened, closing;
+      std::vector<char> next;
+      if (st == GLP_OPT) {
+        gaps_and_rates(m, h, gap, rate);
+        next = closed_after(m, gap, rate, h, h, h_ref);
+        for (size_t e = 0; e < m.ends.size(); ++e)
+          if (m.ends[e].closed != next[e]) (next[e] ? closing : opened).push_back(e);
+      }
+      if ((st == GLP_UNBND || !opened.empty()) && prev && h_in > tol_ev * (1 + 1e-9)) {
+        // Back to the last accepted configuration, half way to where the event was seen.
+        seen = cur.d;
+        const Accepted& p = *prev;
+        m.cen = p.cen;
+        m.angle = p.angle;
+        set_closed(m, p.closed);
+        const double rem = seen - p.d;
+        h_in = rem > tol_ev ? rem / 2 : rem;
+        const std::vector<char> closed = closed_after(m, p.gap, p.rate, p.h_lp, h_in, h_ref);
+        advance(m, p.U, h_in);
+        set_closed(m, closed);
+        cur.d = p.d + h_in;
+        cur.index = p.index + 1;
+        rec = configuration_record(m, cur.index, cur.d);
+        continue;
+      }
+      if (st == GLP_UNBND) {
+        r.collapsed = true;
+        r.stopped = "collapse";
+        r.extra["events"].push_back(event_json(m, "collapse", cur.d, h_in, {}));
+        r.extra["collapse"] = collapse_mechanism(m, h);
+        r.extra["collapse"]["d"] = cur.d;
+        r.extra["collapse"]["poses"] = nlohmann::ordered_json::array();
+        for (const Pose& p : rec.poses) r.extra["collapse"]["poses"].push_back({p.x, p.y, p.angle});
+        if (!prev) r.message = "unstable as it stands";
+        break;
+      }
+      if (!closing.empty() && h > tol_ev * (1 + 1e-9)) {
+        // A corner closes during the step: take a much shorter one from here. The closing
+        // comes first, so a bracket further on is dropped (it is found again if it holds).
+        // Its rate is hidden by the bound that stopped it; from the shorter step on, where it
+        // is still open, the prediction below lands on it.
+        h_next = std::max(tol_ev, h / 8);
+        seen = std::numeric_limits<double>::infinity();
+        continue;
+      }
+
+      // cur is accepted.
       read_forces(m, rec);
-      lp_check_fields(m, s.step, rec);
+      lp_check_fields(m, h, rec);
+      if (s.sliding_check) sliding_check(m, sliding, rec);
       r.steps.push_back(rec);
-      r.capacity = k * s.step;
-      r.stable_steps = k;
-      if (k == s.max_steps) {
+      r.capacity = cur.d;
+      r.stable_steps = cur.index;
+      if (!opened.empty()) {
+        r.extra["events"].push_back(event_json(m, "open", cur.d, h_in, opened));
+        seen = std::numeric_limits<double>::infinity();
+      }
+      if (!closing.empty()) r.extra["events"].push_back(event_json(m, "close", cur.d + h, h, closing));
+      if (s.adaptive ? d_end - cur.d <= 1e-9 * h_ref : cur.index == s.max_steps) {
         r.stopped = "max_steps";
         break;
       }
       emit();
 
-      // Contact state from the step's own solution: a corner whose no-penetration row is
-      // (nearly) tight stays or becomes closed, whatever residual gap the finite update leaves.
-      const std::vector<double> sl = slacks(m, s.step);
-      for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = sl[e] <= s.contact_tolerance;
-      // Finite update: every free block rotates about its own pole, supports move as prescribed.
-      glp_prob* lp = m.lp.get();
-      for (size_t b = 0; b < c.blocks.size(); ++b) {
-        if (m.col[b] > 0) {
-          const Vec2 u(glp_get_col_prim(lp, m.col[b]) * s.step, glp_get_col_prim(lp, m.col[b] + 1) * s.step);
-          const double th = glp_get_col_prim(lp, m.col[b] + 2) * s.step / m.radius[b];
-          m.cen[b] += pole_displacement(u, th);
-          m.angle[b] += th;
-        } else if (m.motion_of[b] >= 0) {
-          const Increment inc = support_increment(m, static_cast<int>(b), s.step);
-          m.cen[b] = inc.at + rot(inc.th) * (m.cen[b] - inc.at) + inc.u;
-          m.angle[b] += inc.th;
-        }
+      cur.cen = m.cen;
+      cur.angle = m.angle;
+      cur.U = column_values(m);
+      cur.gap = gap;
+      cur.rate = rate;
+      cur.h_lp = h;
+      cur.closed.resize(m.ends.size());
+      for (size_t e = 0; e < m.ends.size(); ++e) cur.closed[e] = m.ends[e].closed;
+      cur.fn.resize(m.ends.size());
+      for (size_t e = 0; e < m.ends.size(); ++e) cur.fn[e] = glp_get_row_dual(m.lp.get(), 2 * static_cast<int>(e) + 1);
+      cur.event = !opened.empty() || !closing.empty();
+      double h_take = h;
+      if (s.adaptive) {
+        // An LP that changed the mechanism already holds the new one, so its forces and the
+        // next configuration's lie on one mechanism unless the next LP changes it again.
+        const Prediction p = predict_event(m, cur, prev && !cur.event ? &*prev : nullptr);
+        // Land half a tolerance short of the predicted event, then half a tolerance past it,
+        // so that it is bracketed within the tolerance without bisection. A wrong prediction
+        // costs a step; the mechanism check above still finds every event.
+        const auto land = [&](double x) { return x > tol_ev ? x - tol_ev / 2 : std::min(x + tol_ev / 2, tol_ev); };
+        const double to_event = std::min(p.to_open, p.to_close);
+        if (!std::isfinite(seen)) h_take = std::min(h, land(to_event));
+        // Past an event (or landing just past a predicted one) a short step gives the new
+        // mechanism's force trend and finds the corners that close as the hinge moves; after
+        // that the step is as long as allowed, cut short by the prediction.
+        h_next = cur.event || to_event <= tol_ev ? std::min(h_max, 2 * tol_ev) : h_max;
+        // The next LP's step is what finds a closing: keep it short enough to locate it.
+        if (std::isfinite(p.to_close)) h_next = std::min(h_next, land(std::max(p.to_close - h_take, 0.0)));
       }
-      rec = StepRecord{};
-      rec.index = k + 1;
-      rec.d = (k + 1) * s.step;
-      rec.poses = poses(m);
-      rec.energy = energy(m);
-      record_corners(m, rec);
+      prev = cur;
+      advance(m, cur.U, h_take);
+      set_closed(m, closed_after(m, gap, rate, h, h_take, h_ref));
+      h_in = h_take;
+      cur.index += 1;
+      cur.d = s.adaptive ? prev->d + h_take : cur.index * h_ref;
+      rec = configuration_record(m, cur.index, cur.d);
     }
   } catch (const std::exception& e) {
     r.stopped = "error";
     r.message = e.what();
   }
+  if (s.sliding_check) {
+    r.extra["sliding"] = sliding_summary(c, r);
+    r.extra["sliding"]["lp_solves"] = sliding.solves;
+  }
   emit();
   return r;
+}
+
+nlohmann::ordered_json sliding_summary(const Case& c, const RunResult& r) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  auto joint_name = [&](int k) {
+    if (k < 0 || k >= static_cast<int>(r.joints.size())) return std::string();
+    return c.blocks[r.joints[k].i].id + "/" + c.blocks[r.joints[k].j].id;
+  };
+  const StepRecord* req = nullptr;
+  const StepRecord* dem = nullptr;
+  for (const StepRecord& s : r.steps) {
+    if (!s.extra.contains("sliding")) continue;
+    const auto& x = s.extra["sliding"];
+    if (!req || x["required_angle"].get<double>() > req->extra["sliding"]["required_angle"].get<double>()) req = &s;
+    if (!dem || x["demand_angle"].get<double>() > dem->extra["sliding"]["demand_angle"].get<double>()) dem = &s;
+  }
+  if (!req) return out;
+  const auto& xr = req->extra["sliding"];
+  const auto& xd = dem->extra["sliding"];
+  out["required_friction_angle"] = xr["required_angle"];
+  out["d"] = req->d;
+  out["step"] = req->index;
+  out["joint"] = joint_name(xr["required_joint"].get<int>());
+  out["max_demand_angle"] = xd["demand_angle"];
+  out["demand_d"] = dem->d;
+  out["demand_joint"] = joint_name(xd["demand_joint"].get<int>());
+  return out;
+}
+
+std::optional<SlidingExceedance> first_sliding(const Case& c, const RunResult& r, double angle_deg, bool required) {
+  const char* key = required ? "required_angle" : "demand_angle";
+  const char* joint_key = required ? "required_joint" : "demand_joint";
+  for (const StepRecord& s : r.steps) {
+    if (!s.extra.contains("sliding")) continue;
+    const auto& x = s.extra["sliding"];
+    if (x[key].get<double>() <= angle_deg) continue;
+    SlidingExceedance e;
+    e.step = s.index;
+    e.d = s.d;
+    e.angle = x[key].get<double>();
+    e.joint = x[joint_key].get<int>();
+    if (e.joint >= 0) e.blocks = c.blocks[r.joints[e.joint].i].id + "/" + c.blocks[r.joints[e.joint].j].id;
+    return e;
+  }
+  return std::nullopt;
 }
 
 }  // namespace masonry

@@ -1,0 +1,126 @@
+// Event-driven PRD (`prd --adaptive`): long steps while the mechanism holds, each event located
+// to the event tolerance. Expected values come from closed forms (the tipping angle) and from
+// fixed-step runs at a quarter of the case's step, never from an adaptive run itself.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "case.hpp"
+#include "prd.hpp"
+
+namespace masonry {
+namespace {
+
+Case standard(const std::string& name) { return load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json"); }
+
+PrdSettings adaptive(const Case& c) {
+  PrdSettings s = PrdSettings::from_case(c);
+  s.adaptive = true;
+  return s;
+}
+
+PrdSettings quarter_step(const Case& c) {
+  PrdSettings s = PrdSettings::from_case(c);
+  s.step /= 4;
+  s.max_steps *= 4;
+  return s;
+}
+
+double event_tolerance(const RunResult& r) { return r.settings["event_tolerance"].get<double>(); }
+
+// A block on a tilting ground (1 rad of tilt per m of d) topples at atan(b/h): the adaptive run
+// finds it within the event tolerance, with steps far longer than that tolerance.
+TEST(PrdAdaptive, TipsWithinTheEventToleranceOfTheClosedForm) {
+  const std::string json = R"({"format": "masonry-case/1", "name": "tilting block",
+    "blocks": [
+      {"id": "ground", "vertices": [[-2, -0.5], [2, -0.5], [2, 0], [-2, 0]], "support": true},
+      {"id": "block", "vertices": [[0, 0], [0.5, 0], [0.5, 1], [0, 1]], "density": 2000}],
+    "motion": {"step": 0.01, "max_steps": 200, "supports": [{"block": "ground", "rotation": 1.0, "about": [-2, -0.5]}]},
+    "prd": {"adaptive": true, "event_tolerance": 1e-5}})";
+  const Case c = parse_case(json, "tilting-block.json");
+  const RunResult r = prd_run(c, PrdSettings::from_case(c));
+  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  const double critical = std::atan(0.5);
+  EXPECT_LE(r.capacity, critical + 1e-9);
+  EXPECT_GT(r.capacity, critical - 1e-5);
+  // A fixed run at the tolerance would take 46000 LPs; bisection of a 0.16 rad step needs ~15.
+  EXPECT_LT(r.timing.lp_solves, 60);
+  const auto& ev = r.extra["events"];
+  ASSERT_FALSE(ev.empty());
+  EXPECT_EQ(ev.back()["kind"], "collapse");
+  EXPECT_LE(ev.back()["within"].get<double>(), 1e-5 * (1 + 1e-6));
+}
+
+// The issue's acceptance test: the capacity agrees with a fixed-step run at a quarter of the
+// default step within the event tolerance, and every event is located within it.
+void expect_agrees_with_quarter_step(const std::string& name) {
+  const Case c = standard(name);
+  const RunResult a = prd_run(c, adaptive(c));
+  const RunResult q = prd_run(c, quarter_step(c));
+  ASSERT_EQ(a.stopped, "collapse") << a.message;
+  ASSERT_EQ(q.stopped, "collapse") << q.message;
+  const double tol = event_tolerance(a);
+  EXPECT_NEAR(a.capacity, q.capacity, tol) << name;
+  for (const auto& e : a.extra["events"]) {
+    EXPECT_LE(e["within"].get<double>(), tol * (1 + 1e-6)) << name << ": " << e.dump();
+    EXPECT_TRUE(e["kind"] == "open" || e["kind"] == "close" || e["kind"] == "collapse") << e.dump();
+    if (e["kind"] != "collapse") {
+      EXPECT_FALSE(e["joints"].empty()) << e.dump();
+    }
+  }
+  // Every adaptive record is a configuration in equilibrium the LP accepted: d increases.
+  for (size_t k = 1; k < a.steps.size(); ++k) EXPECT_GT(a.steps[k].d, a.steps[k - 1].d);
+}
+
+TEST(PrdAdaptive, PointedArchAgreesWithAQuarterStepRun) { expect_agrees_with_quarter_step("pointed-arch"); }
+TEST(PrdAdaptive, CathedralAgreesWithAQuarterStepRun) { expect_agrees_with_quarter_step("cathedral-settlement"); }
+TEST(PrdAdaptive, CathedralRotationAgreesWithAQuarterStepRun) {
+  expect_agrees_with_quarter_step("cathedral-settlement-rotation");
+}
+
+// The arch has three mechanisms (three hinges at the start, the haunch hinge moving once,
+// collapse): the adaptive run needs at least three times fewer LPs than the fixed 1 mm run.
+TEST(PrdAdaptive, PointedArchNeedsThreeTimesFewerLps) {
+  const Case c = standard("pointed-arch");
+  const RunResult a = prd_run(c, adaptive(c));
+  const RunResult f = prd_run(c, PrdSettings::from_case(c));
+  EXPECT_LE(3 * a.timing.lp_solves, f.timing.lp_solves) << a.timing.lp_solves << " vs " << f.timing.lp_solves;
+}
+
+// The cathedral changes mechanism about ten times before collapse, and each change located to
+// 1e-4 of the scene costs at least two LPs: fewer LPs than the fixed run, not three times fewer
+// (README, "Event-driven PRD").
+TEST(PrdAdaptive, CathedralNeedsFewerLpsThanTheFixedRun) {
+  const Case c = standard("cathedral-settlement");
+  const RunResult a = prd_run(c, adaptive(c));
+  const RunResult f = prd_run(c, PrdSettings::from_case(c));
+  EXPECT_LT(a.timing.lp_solves, f.timing.lp_solves);
+}
+
+// The events of the fixed run at a quarter step, as d where its open set changes, are the
+// adaptive run's events: same count, each within the quarter step plus the tolerance.
+TEST(PrdAdaptive, PointedArchEventsMatchTheFixedRunsMechanismChanges) {
+  const Case c = standard("pointed-arch");
+  const RunResult a = prd_run(c, adaptive(c));
+  const RunResult q = prd_run(c, quarter_step(c));
+  std::vector<double> opens_a, opens_q;
+  for (const auto& e : a.extra["events"])
+    if (e["kind"] == "open") opens_a.push_back(e["d"].get<double>());
+  for (const auto& e : q.extra["events"])
+    if (e["kind"] == "open") opens_q.push_back(e["d"].get<double>());
+  ASSERT_EQ(opens_a.size(), opens_q.size());
+  const double h = quarter_step(c).step, tol = event_tolerance(a);
+  for (size_t k = 0; k < opens_a.size(); ++k) EXPECT_NEAR(opens_a[k], opens_q[k], h + tol) << k;
+}
+
+TEST(PrdAdaptive, FixedRunsAreUnchangedByTheEventMachinery) {
+  // In a fixed run every step is one increment: d_k = k * step exactly, events within a step.
+  const Case c = standard("pointed-arch");
+  const RunResult f = prd_run(c, PrdSettings::from_case(c));
+  for (size_t k = 0; k < f.steps.size(); ++k) EXPECT_DOUBLE_EQ(f.steps[k].d, k * c.motion.step);
+  for (const auto& e : f.extra["events"]) EXPECT_LE(e["within"].get<double>(), c.motion.step * (1 + 1e-12));
+}
+
+}  // namespace
+}  // namespace masonry
