@@ -14,9 +14,10 @@ masonry::Case standard(const std::string& name) {
   return masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json");
 }
 
-void capacity_run(benchmark::State& state, const std::string& name) {
+void capacity_run(benchmark::State& state, const std::string& name, bool adaptive) {
   const masonry::Case c = standard(name);
-  const masonry::PrdSettings s = masonry::PrdSettings::from_case(c);
+  masonry::PrdSettings s = masonry::PrdSettings::from_case(c);
+  s.adaptive = adaptive;
   double lp_share = 0;
   for (auto _ : state) {
     const masonry::RunResult r = masonry::prd_run(c, s);
@@ -34,12 +35,14 @@ void single_analysis(benchmark::State& state, const std::string& name) {
 }
 
 BENCHMARK_CAPTURE(single_analysis, pointed_arch, std::string("pointed-arch"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(capacity_run, pointed_arch, std::string("pointed-arch"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(capacity_run, pointed_arch, std::string("pointed-arch"), false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(single_analysis, cathedral, std::string("cathedral-settlement"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(capacity_run, cathedral_settlement, std::string("cathedral-settlement"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_rotation, std::string("cathedral-settlement-rotation"))
+BENCHMARK_CAPTURE(capacity_run, cathedral_settlement, std::string("cathedral-settlement"), false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_rotation, std::string("cathedral-settlement-rotation"), false)
+    ->Unit(benchmark::kMillisecond);
+// Event-driven runs (--adaptive): the same capacities, events located to 1e-4 of the scene.
+BENCHMARK_CAPTURE(capacity_run, pointed_arch_adaptive, std::string("pointed-arch"), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_adaptive, std::string("cathedral-settlement"), true)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
-
-
