@@ -3,6 +3,7 @@
 #include <box2d/b2_common.h>
 #include <box2d/b2_settings.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -98,16 +99,27 @@ std::vector<std::vector<Vec2>> convex_pieces(const std::vector<Vec2>& poly) {
 
 namespace {
 
-// Largest over the edges of 1 of the smallest signed distance of 2's vertices (b2FindMaxSeparation).
-double max_separation(int& edge, const Vec2* v1, const Vec2* n1, int c1, const Vec2* v2, int c2) {
+// Smallest signed distance of 2's vertices from edge i of 1.
+inline double edge_separation(int i, const Vec2* v1, const Vec2* n1, const Vec2* v2, int c2) {
+  double si = INFINITY;
+  for (int j = 0; j < c2; ++j) si = std::min(si, n1[i].dot(v2[j] - v1[i]));
+  return si;
+}
+
+// Largest over the edges of 1 of the smallest signed distance of 2's vertices (b2FindMaxSeparation);
+// `second` is the largest over the other edges, so best - second says how firm the choice is.
+double max_separation(int& edge, double& second, const Vec2* v1, const Vec2* n1, int c1, const Vec2* v2, int c2) {
   double best = -INFINITY;
+  second = -INFINITY;
   edge = 0;
   for (int i = 0; i < c1; ++i) {
-    double si = INFINITY;
-    for (int j = 0; j < c2; ++j) si = std::min(si, n1[i].dot(v2[j] - v1[i]));
+    const double si = edge_separation(i, v1, n1, v2, c2);
     if (si > best) {
+      second = best;
       best = si;
       edge = i;
+    } else {
+      second = std::max(second, si);
     }
   }
   return best;
@@ -137,28 +149,91 @@ int clip_segment(ClipVertex out[2], const ClipVertex in[2], const Vec2& normal, 
 }  // namespace
 
 bool collide(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, Manifold& m) {
+  SatCache fresh;
+  return collide_cached(va, na, ca, vb, nb, cb, 0.0, 0.0, fresh, m);
+}
+
+bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, double motion,
+                    double lever, SatCache& cache, Manifold& m) {
   m.count = 0;
-  int edge_a = 0, edge_b = 0;
-  const double sep_a = max_separation(edge_a, va, na, ca, vb, cb);
-  if (sep_a > 0) return false;
-  const double sep_b = max_separation(edge_b, vb, nb, cb, va, ca);
-  if (sep_b > 0) return false;
   // Box2D's hysteresis: face A unless B is clearly better, so the choice does not flicker.
   const double k_tol = 0.1 * b2_linearSlop;
-  const bool flip = sep_b > sep_a + k_tol;
-  const Vec2 *v1 = flip ? vb : va, *n1 = flip ? nb : na, *v2 = flip ? va : vb, *n2 = flip ? na : nb;
+  int edge_a = 0, edge_b = 0, inc = 0;
+  double sep_a = 0, sep_b = 0;
+  bool flip = false, searched = false;
+  // A separating edge found last time proves the polygons apart again if it still separates them
+  // (the full search would find this or a larger separation). When touching, the best edges, the
+  // flip and the incident edge are reused while the motion since the search is below a quarter
+  // of the margin by which each choice won (each separation moves by at most `motion`, so a
+  // difference of two by at most twice that; the factor 2 left over covers rounding).
+  switch (cache.state) {
+    case SatCache::kApartA:
+      if (edge_separation(cache.edge_a, va, na, vb, cb) > 0) return false;
+      break;
+    case SatCache::kApartB:
+      if (edge_separation(cache.edge_b, vb, nb, va, ca) > 0) return false;
+      break;
+    case SatCache::kTouching:
+      cache.slack -= motion;
+      if (cache.slack > 0) {
+        edge_a = cache.edge_a;
+        edge_b = cache.edge_b;
+        sep_a = edge_separation(edge_a, va, na, vb, cb);
+        if (sep_a > 0) return false;
+        sep_b = edge_separation(edge_b, vb, nb, va, ca);
+        if (sep_b > 0) return false;
+        flip = sep_b > sep_a + k_tol;
+        inc = cache.inc;
+        searched = flip == cache.flip;  // always, by the slack; a mismatch would mean a bad bound
+      }
+      break;
+    case SatCache::kNone:
+      break;
+  }
+  if (!searched) {
+    double second_a = 0, second_b = 0;
+    sep_a = max_separation(edge_a, second_a, va, na, ca, vb, cb);
+    if (sep_a > 0) {
+      cache.state = SatCache::kApartA;
+      cache.edge_a = static_cast<unsigned char>(edge_a);
+      return false;
+    }
+    sep_b = max_separation(edge_b, second_b, vb, nb, cb, va, ca);
+    if (sep_b > 0) {
+      cache.state = SatCache::kApartB;
+      cache.edge_b = static_cast<unsigned char>(edge_b);
+      return false;
+    }
+    flip = sep_b > sep_a + k_tol;
+    const Vec2* n1 = flip ? nb : na;
+    const Vec2* n2 = flip ? na : nb;
+    const int c2 = flip ? ca : cb;
+    const Vec2 normal = n1[flip ? edge_b : edge_a];
+    double min_dot = INFINITY, second_dot = INFINITY;
+    for (int i = 0; i < c2; ++i) {
+      const double d = normal.dot(n2[i]);
+      if (d < min_dot) {
+        second_dot = min_dot;
+        min_dot = d;
+        inc = i;
+      } else {
+        second_dot = std::min(second_dot, d);
+      }
+    }
+    cache.state = SatCache::kTouching;
+    cache.flip = flip;
+    cache.edge_a = static_cast<unsigned char>(edge_a);
+    cache.edge_b = static_cast<unsigned char>(edge_b);
+    cache.inc = static_cast<unsigned char>(inc);
+    // The incident edge's lead is a difference of dot products of unit normals; it changes by at
+    // most twice the relative rotation, and the lever turns rotation into motion.
+    cache.slack = 0.25 * std::min({sep_a - second_a, sep_b - second_b, std::abs(sep_b - (sep_a + k_tol)),
+                                   (second_dot - min_dot) * lever});
+  }
+  const Vec2 *v1 = flip ? vb : va, *n1 = flip ? nb : na, *v2 = flip ? va : vb;
   const int c1 = flip ? cb : ca, c2 = flip ? ca : cb, e1 = flip ? edge_b : edge_a;
 
   const Vec2 normal = n1[e1];
-  int inc = 0;
-  double min_dot = INFINITY;
-  for (int i = 0; i < c2; ++i) {
-    const double d = normal.dot(n2[i]);
-    if (d < min_dot) {
-      min_dot = d;
-      inc = i;
-    }
-  }
   const ClipVertex incident[2] = {{v2[inc], 0}, {v2[(inc + 1) % c2], 1}};
   const Vec2 v11 = v1[e1], v12 = v1[(e1 + 1) % c1];
   const Vec2 tangent = (v12 - v11).normalized();

@@ -40,4 +40,26 @@ struct Manifold {
 // vertex i to vertex i+1). Returns false (count 0) when the polygons are apart.
 bool collide(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, Manifold& m);
 
+// What the separating-axis search of the last call decided, so the next call on the same pair can
+// skip the search while it provably comes out the same (temporal coherence: between two DEM
+// cycles the blocks move by nanometres, and the search is most of the cost of a contact).
+struct SatCache {
+  enum State : unsigned char { kNone, kApartA, kApartB, kTouching };
+  State state = kNone;
+  bool flip = false;
+  unsigned char edge_a = 0, edge_b = 0, inc = 0;  // best edges of A and B, incident edge
+  // Touching: how much more relative motion (m, in the units of `motion` below) the decisions
+  // (best edges, flip, incident edge) can take before they might change.
+  double slack = 0.0;
+};
+
+// Same result as collide(), bit for bit. `motion` bounds how much any separation n_i . (w_j - u_i)
+// between an edge of one polygon and a vertex of the other can have changed since the last call
+// on this pair: |dx_a| + |dth_a| r_a + |dx_b| + |dth_b| r_b + (|dth_a| + |dth_b|) L, r the
+// distance of the vertices from their block's centre of rotation and L the largest distance
+// between a vertex of A and a vertex of B (see DemModel's step()). `lever` is that L, which also
+// converts the incident-edge choice (a dot product of unit normals) into a length.
+bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, double motion,
+                    double lever, SatCache& cache, Manifold& m);
+
 }  // namespace masonry::dem

@@ -45,6 +45,9 @@ struct DemSettings {
   // A joint corner whose normal gap exceeds this is open, m; < 0 means the case's
   // prd.contact_tolerance, so DEM and PRD call hinges alike.
   double open_gap = -1.0;
+  // Tests only: accept a time-step factor above 1, so the run's blow-up guard (an energy balance
+  // checked every few cycles, dem_run) can be exercised. No case field or option sets it.
+  bool allow_unstable_timestep = false;
   static DemSettings from_case(const Case& c);
 };
 
@@ -90,6 +93,11 @@ class DemModel {
   double gravity_energy() const;
   double spring_energy() const;
   double load_work() const;
+  double support_work() const;  // work done on the blocks by the moving supports since the start
+  // Work done on the blocks since the start by gravity, the loads and the moving supports, up to
+  // the current positions (half a step ahead of the energies above, so a bound on them):
+  // kinetic + spring energy + dissipation equals it, to within the scheme's error.
+  double energy_input() const;
   int contact_points() const;   // manifold points in contact
   double max_overlap() const;   // m
   long long broadphase_rebuilds() const;

@@ -34,6 +34,10 @@ struct Pair {
   int ba = -1, bb = -1;  // their blocks
   int n = 0;             // points in contact
   PointState pt[2];
+  // The separating-axis decisions of the last cycle, reused while provably unchanged, and the
+  // largest distance between a vertex of pa and one of pb while they are candidates (m).
+  dem::SatCache sat;
+  double lever = 0;
 };
 
 struct QueryCollector {
@@ -83,6 +87,11 @@ struct DemModel::Impl {
   std::vector<double> mass, inertia, wref, gyr, rmax, depth;
   std::vector<Vec2> c0, pos, vel, force;
   std::vector<double> ang, spin, torque;
+  std::vector<double> cs, sn;  // cos and sin of ang, once per cycle for all pieces of the block
+  // Motion of the last cycle: |dx| + |dth| rmax, and |dth|; they bound how far the contact
+  // decisions cached in the pairs can have drifted (dem::collide_cached).
+  std::vector<double> moved, turned;
+  bool rebuild_due = false;  // some block has moved half the margin since the last rebuild
   std::vector<Vec2> pos_rb;  // at the last broad-phase rebuild
   std::vector<double> ang_rb;
   std::vector<int> motion_of;  // index into c.motion.supports, or -1
@@ -97,21 +106,28 @@ struct DemModel::Impl {
   std::vector<Pair> pairs;
   std::vector<int> scratch;
 
-  // Diagnostics of the last cycle.
-  double unbalanced = INFINITY, speed = INFINITY, ke = 0, spring_e = 0, overlap_max = 0;
-  int npoints = 0;
+  // Diagnostics of the last cycle (the contact ones are summed from `pairs` on demand).
+  double unbalanced = INFINITY, speed = INFINITY, ke = 0;
+  double support_work = 0;  // J, done on the blocks by the moving supports since the start
 
   Impl(const Case& cs, const DemSettings& st) : c(cs), s(st) {}
 
   void setup();
   void place_support(int b, double d, Vec2& x, double& th) const;
-  void transform_pieces();
+  void transform_pieces(bool all);
   void rebuild();
-  bool needs_rebuild() const;
   void step();
 };
 
 void DemModel::Impl::setup() {
+  const std::pair<const char*, double> numbers[] = {
+      {"young_modulus", s.young_modulus},   {"poisson", s.poisson},         {"stiffness_reduction", s.stiffness_reduction},
+      {"hold_time", s.hold_time},           {"move_time", s.move_time},     {"step", s.step},
+      {"equilibrium_tolerance", s.equilibrium_tolerance}, {"velocity_tolerance", s.velocity_tolerance},
+      {"collapse_drift", s.collapse_drift}, {"open_gap", s.open_gap},       {"kn", s.kn.value_or(1.0)},
+      {"ks", s.ks.value_or(1.0)}};
+  for (const auto& [name, v] : numbers)
+    if (!std::isfinite(v)) throw std::runtime_error(std::string("dem: setting ") + name + " must be a finite number");
   if (!(s.friction_angle >= 0 && s.friction_angle <= 90)) throw std::runtime_error("dem: friction angle must lie in [0, 90] degrees");
   if (!(s.damping >= 0 && s.damping < 1)) throw std::runtime_error("dem: damping must lie in [0, 1)");
   if (!(s.stiffness_reduction > 0)) throw std::runtime_error("dem: stiffness reduction must be positive");
@@ -134,6 +150,10 @@ void DemModel::Impl::setup() {
   ang.assign(nb, 0);
   spin.assign(nb, 0);
   torque.assign(nb, 0);
+  cs.assign(nb, 1.0);
+  sn.assign(nb, 0.0);
+  moved.assign(nb, 0.0);
+  turned.assign(nb, 0.0);
   motion_of.assign(nb, -1);
   for (size_t k = 0; k < c.motion.supports.size(); ++k) motion_of[c.motion.supports[k].block] = static_cast<int>(k);
 
@@ -187,6 +207,11 @@ void DemModel::Impl::setup() {
   kn = (s.kn ? *s.kn : s.young_modulus / h_block) / s.stiffness_reduction;
   ks = (s.ks ? *s.ks : G / h_block) / s.stiffness_reduction;
   tan_phi = s.friction_angle >= 90 ? INFINITY : std::tan(s.friction_angle * M_PI / 180);
+  if (!(kn > 0) || !(ks > 0) || !std::isfinite(kn) || !std::isfinite(ks)) {
+    std::ostringstream m;
+    m << "dem: joint stiffnesses must be positive and finite (kn " << kn << " Pa/m, ks " << ks << " Pa/m)";
+    throw std::runtime_error(m.str());
+  }
 
   for (int b = 0; b < nb; ++b) {
     if (support[b]) continue;
@@ -201,7 +226,7 @@ void DemModel::Impl::setup() {
     lam = std::max(lam, 2 * depth[b] * ((kn + ks) * P / mass[b] + std::max(kn, ks) * J / inertia[b]));
   }
   dt_crit = 2 / std::sqrt(lam);
-  if (!(s.timestep_factor > 0) || s.timestep_factor > 1) {
+  if (!(s.timestep_factor > 0) || !std::isfinite(s.timestep_factor) || (s.timestep_factor > 1 && !s.allow_unstable_timestep)) {
     std::ostringstream m;
     m << "dem: time-step factor " << s.timestep_factor << " is outside (0, 1]: the time step would be "
       << s.timestep_factor * dt_crit << " s against a stability limit of " << dt_crit
@@ -211,6 +236,7 @@ void DemModel::Impl::setup() {
   dt = s.timestep_factor * dt_crit;
   margin = 0.05 * min_size;
   open_gap = s.open_gap >= 0 ? s.open_gap : c.prd.contact_tolerance;
+  transform_pieces(true);
   rebuild();
 }
 
@@ -226,29 +252,31 @@ void DemModel::Impl::place_support(int b, double d, Vec2& x, double& th) const {
   x = m.about + rotate(c0[b] - m.about, std::cos(th), std::sin(th)) + d * m.translation;
 }
 
-void DemModel::Impl::transform_pieces() {
+// World vertices and normals of the pieces. Fixed supports never move, so after the first call
+// (all = true) only free blocks and moving supports are transformed.
+void DemModel::Impl::transform_pieces(bool all) {
+  for (int b = 0; b < nb; ++b) {
+    if (!all && support[b] && motion_of[b] < 0) continue;
+    ::sincos(ang[b], &sn[b], &cs[b]);  // one call for both, as GCC makes of adjacent cos and sin
+  }
   const int np = static_cast<int>(piece_block.size());
   for (int p = 0; p < np; ++p) {
     const int b = piece_block[p];
-    const double cs = std::cos(ang[b]), sn = std::sin(ang[b]);
+    if (!all && support[b] && motion_of[b] < 0) continue;
+    const double cb = cs[b], sb = sn[b];
+    const Vec2 x = pos[b];
     for (int i = piece_off[p], e = piece_off[p] + piece_cnt[p]; i < e; ++i) {
-      world_v[i] = pos[b] + rotate(local_v[i], cs, sn);
-      world_n[i] = rotate(local_n[i], cs, sn);
+      world_v[i] = x + rotate(local_v[i], cb, sb);
+      world_n[i] = rotate(local_n[i], cb, sb);
     }
   }
-}
-
-bool DemModel::Impl::needs_rebuild() const {
-  for (int b = 0; b < nb; ++b)
-    if ((pos[b] - pos_rb[b]).norm() + std::abs(ang[b] - ang_rb[b]) * rmax[b] > 0.5 * margin) return true;
-  return false;
 }
 
 // Candidate pairs: pieces of different blocks (not two supports) whose boxes, grown by the
 // margin, overlap. Valid until some block has moved half the margin.
 void DemModel::Impl::rebuild() {
   ++rebuilds;
-  transform_pieces();
+  transform_pieces(false);
   const int np = static_cast<int>(piece_block.size());
   std::vector<Vec2> lo(np), hi(np);
   b2DynamicTree tree;
@@ -285,6 +313,10 @@ void DemModel::Impl::rebuild() {
       pr.pb = o;
       pr.ba = ba;
       pr.bb = bb;
+      // The boxes grown by the margin overlap, so the centroids are within sqrt 2 (r_a + r_b + 2
+      // margin); each block moves at most about half a margin before the next rebuild. Any vertex
+      // pair is then within (1 + sqrt 2)(r_a + r_b) + 2 sqrt 2 margin + margin, rounded up.
+      pr.lever = 2.5 * (rmax[ba] + rmax[bb]) + 5 * margin;
       fresh.push_back(pr);
     }
   }
@@ -297,31 +329,33 @@ void DemModel::Impl::rebuild() {
   pairs.swap(fresh);
   pos_rb = pos;
   ang_rb = ang;
+  rebuild_due = false;
 }
 
 void DemModel::Impl::step() {
-  if (needs_rebuild()) rebuild();
-  transform_pieces();
+  if (rebuild_due) rebuild();
+  transform_pieces(false);
   for (int b = 0; b < nb; ++b) {
     force[b] = Vec2(0, -mass[b] * c.gravity);
     torque[b] = 0;
   }
   for (size_t l = 0; l < load_block.size(); ++l) {
     const int b = load_block[l];
-    const Vec2 r = rotate(load_r[l], std::cos(ang[b]), std::sin(ang[b]));
+    const Vec2 r = rotate(load_r[l], cs[b], sn[b]);
     force[b] += load_force[l];
     torque[b] += cross(r, load_force[l]);
   }
-  double se = 0, omax = 0;
-  int npts = 0;
   Manifold m;
   for (Pair& pr : pairs) {
     const int pa = pr.pa, pb = pr.pb, ba = pr.ba, bb = pr.bb;
-    PointState old[2] = {pr.pt[0], pr.pt[1]};
+    // Only the shear history is carried from one cycle to the next.
     const int nold = pr.n;
+    const int old_key[2] = {pr.pt[0].key, pr.pt[1].key};
+    const double old_fs[2] = {pr.pt[0].fs, pr.pt[1].fs};
     pr.n = 0;
-    if (!dem::collide(&world_v[piece_off[pa]], &world_n[piece_off[pa]], piece_cnt[pa], &world_v[piece_off[pb]],
-                      &world_n[piece_off[pb]], piece_cnt[pb], m))
+    const double motion = moved[ba] + moved[bb] + (turned[ba] + turned[bb]) * pr.lever;
+    if (!dem::collide_cached(&world_v[piece_off[pa]], &world_n[piece_off[pa]], piece_cnt[pa], &world_v[piece_off[pb]],
+                             &world_n[piece_off[pb]], piece_cnt[pb], motion, pr.lever, pr.sat, m))
       continue;
     const double dep = std::min(depth[ba], depth[bb]);
     // Each point stands for half of the clipped joint, whether or not its partner is in contact,
@@ -334,7 +368,7 @@ void DemModel::Impl::step() {
       const int key = ((m.ref_edge * dem::kMaxPieceVertices + m.inc_edge) * 2 + m.flip) * 2 + mp.slot;
       double fs = 0;
       for (int o = 0; o < nold; ++o)
-        if (old[o].key == key) fs = old[o].fs;
+        if (old_key[o] == key) fs = old_fs[o];
       const Vec2 ra = mp.point - pos[ba], rb = mp.point - pos[bb];
       const Vec2 vr = vel[bb] + spin[bb] * perp(rb) - vel[ba] - spin[ba] * perp(ra);
       const double overlap = -mp.separation;
@@ -347,8 +381,6 @@ void DemModel::Impl::step() {
       torque[bb] += cross(rb, f);
       force[ba] -= f;
       torque[ba] -= cross(ra, f);
-      se += 0.5 * fn * fn / (kn * area) + 0.5 * fs * fs / (ks * area);
-      omax = std::max(omax, overlap);
       PointState& ps = pr.pt[pr.n++];
       ps.key = key;
       ps.fn = fn;
@@ -358,45 +390,58 @@ void DemModel::Impl::step() {
       ps.point = mp.point;
       ps.normal = n;
     }
-    npts += pr.n;
   }
   double unb = 0, spd = 0, kin = 0;
   const double alpha = s.damping;
+  const double half_margin = 0.5 * margin;
+  bool due = false;
   for (int b = 0; b < nb; ++b) {
+    const Vec2 x_old = pos[b];
+    const double th_old = ang[b];
     if (support[b]) {
+      if (motion_of[b] < 0) {  // fixed: stays at its initial pose, at rest
+        vel[b] = Vec2::Zero();
+        spin[b] = 0;
+        moved[b] = turned[b] = 0;
+        continue;
+      }
       Vec2 x;
       double th;
       place_support(b, d_target, x, th);
+      // force[b] and torque[b] (about pos[b]) are what the blocks exert on the support.
+      support_work -= force[b].dot(x - pos[b]) + torque[b] * (th - ang[b]);
       vel[b] = (x - pos[b]) / dt;
       spin[b] = (th - ang[b]) / dt;
       pos[b] = x;
       ang[b] = th;
-      continue;
+    } else {
+      const Vec2 F = force[b];
+      const double M = torque[b];
+      unb = std::max(unb, std::max(F.norm(), std::abs(M) / gyr[b]) / wref[b]);
+      // Local (non-viscous) damping: a fraction of the unbalanced force opposes the motion.
+      Vec2 Fd(F.x() - alpha * std::abs(F.x()) * (vel[b].x() > 0 ? 1 : vel[b].x() < 0 ? -1 : 0),
+              F.y() - alpha * std::abs(F.y()) * (vel[b].y() > 0 ? 1 : vel[b].y() < 0 ? -1 : 0));
+      const double Md = M - alpha * std::abs(M) * (spin[b] > 0 ? 1 : spin[b] < 0 ? -1 : 0);
+      const Vec2 v_new = vel[b] + dt * Fd / mass[b];
+      const double w_new = spin[b] + dt * Md / inertia[b];
+      // Kinetic energy at the force time: mean of the two half-step velocities.
+      kin += 0.5 * mass[b] * (0.5 * (v_new + vel[b])).squaredNorm() + 0.5 * inertia[b] * std::pow(0.5 * (w_new + spin[b]), 2);
+      vel[b] = v_new;
+      spin[b] = w_new;
+      pos[b] += dt * v_new;
+      ang[b] += dt * w_new;
+      spd = std::max(spd, v_new.norm() + std::abs(w_new) * gyr[b]);
     }
-    const Vec2 F = force[b];
-    const double M = torque[b];
-    unb = std::max(unb, std::max(F.norm(), std::abs(M) / gyr[b]) / wref[b]);
-    // Local (non-viscous) damping: a fraction of the unbalanced force opposes the motion.
-    Vec2 Fd(F.x() - alpha * std::abs(F.x()) * (vel[b].x() > 0 ? 1 : vel[b].x() < 0 ? -1 : 0),
-            F.y() - alpha * std::abs(F.y()) * (vel[b].y() > 0 ? 1 : vel[b].y() < 0 ? -1 : 0));
-    const double Md = M - alpha * std::abs(M) * (spin[b] > 0 ? 1 : spin[b] < 0 ? -1 : 0);
-    const Vec2 v_new = vel[b] + dt * Fd / mass[b];
-    const double w_new = spin[b] + dt * Md / inertia[b];
-    // Kinetic energy at the force time: mean of the two half-step velocities.
-    kin += 0.5 * mass[b] * (0.5 * (v_new + vel[b])).squaredNorm() + 0.5 * inertia[b] * std::pow(0.5 * (w_new + spin[b]), 2);
-    vel[b] = v_new;
-    spin[b] = w_new;
-    pos[b] += dt * v_new;
-    ang[b] += dt * w_new;
-    spd = std::max(spd, v_new.norm() + std::abs(w_new) * gyr[b]);
+    // The motion actually taken (differences of the stored doubles, so rounding is included).
+    turned[b] = std::abs(ang[b] - th_old);
+    moved[b] = (pos[b] - x_old).norm() + turned[b] * rmax[b];
+    if ((pos[b] - pos_rb[b]).norm() + std::abs(ang[b] - ang_rb[b]) * rmax[b] > half_margin) due = true;
   }
+  rebuild_due = due;
   d_now = d_target;
   unbalanced = unb;
   speed = spd;
   ke = kin;
-  spring_e = se;
-  overlap_max = omax;
-  npoints = npts;
   time += dt;
   ++cycles;
 }
@@ -421,9 +466,25 @@ DemBlockState DemModel::block(int b) const {
   return {p_->pos[b], p_->ang[b], p_->vel[b], p_->spin[b]};
 }
 double DemModel::kinetic_energy() const { return p_->ke; }
-double DemModel::spring_energy() const { return p_->spring_e; }
-int DemModel::contact_points() const { return p_->npoints; }
-double DemModel::max_overlap() const { return p_->overlap_max; }
+double DemModel::support_work() const { return p_->support_work; }
+double DemModel::spring_energy() const {
+  double e = 0;
+  for (const Pair& pr : p_->pairs)
+    for (int i = 0; i < pr.n; ++i)
+      e += 0.5 * pr.pt[i].fn * pr.pt[i].fn / (p_->kn * pr.pt[i].area) + 0.5 * pr.pt[i].fs * pr.pt[i].fs / (p_->ks * pr.pt[i].area);
+  return e;
+}
+int DemModel::contact_points() const {
+  int n = 0;
+  for (const Pair& pr : p_->pairs) n += pr.n;
+  return n;
+}
+double DemModel::max_overlap() const {
+  double o = 0;
+  for (const Pair& pr : p_->pairs)
+    for (int i = 0; i < pr.n; ++i) o = std::max(o, pr.pt[i].overlap);
+  return o;
+}
 long long DemModel::broadphase_rebuilds() const { return p_->rebuilds; }
 
 // Gravity and load terms use the positions at the last force evaluation's time only to within a
@@ -443,6 +504,19 @@ double DemModel::load_work() const {
     const int b = m.load_block[l];
     const double th = m.ang[b] - m.dt * m.spin[b];
     const Vec2 x = m.pos[b] - m.dt * m.vel[b] + rotate(m.load_r[l], std::cos(th), std::sin(th));
+    w += m.load_force[l].dot(x - (m.c0[b] + m.load_r[l]));
+  }
+  return w;
+}
+
+double DemModel::energy_input() const {
+  const Impl& m = *p_;
+  double w = m.support_work;
+  for (int b = 0; b < m.nb; ++b)
+    if (!m.support[b]) w -= m.mass[b] * m.c.gravity * (m.pos[b].y() - m.c0[b].y());
+  for (size_t l = 0; l < m.load_block.size(); ++l) {
+    const int b = m.load_block[l];
+    const Vec2 x = m.pos[b] + rotate(m.load_r[l], std::cos(m.ang[b]), std::sin(m.ang[b]));
     w += m.load_force[l].dot(x - (m.c0[b] + m.load_r[l]));
   }
   return w;

@@ -1,12 +1,57 @@
+#include <time.h>
+
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "dem.hpp"
 
 namespace masonry {
 
 namespace {
+
+// CPU time of the calling thread, s: a run's own cost even when a sweep runs many in parallel
+// threads on fewer cores.
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Cycles between the cheap whole-model checks (energy budget, drift): a blow-up multiplies the
+// energy many times over within this many cycles, and a collapse drifts slowly against it.
+constexpr long long kCheckEvery = 64;
+
+// A state that is no longer finite stops the run before anything is recorded (the sum of the
+// kinetic energies carries a NaN or infinity from any block).
+void check_finite(const DemModel& m) {
+  if (!std::isfinite(m.kinetic_energy()) || !std::isfinite(m.unbalanced_ratio())) {
+    std::ostringstream msg;
+    msg << "dem: the integration produced a non-finite state at t = " << m.time() << " s (cycle " << m.cycles()
+        << "); refusing to record it";
+    throw std::runtime_error(msg.str());
+  }
+}
+
+// Energy balance: kinetic + spring energy + dissipation = work of gravity, the loads and the
+// moving supports, so the kinetic energy can never exceed that input. The explicit scheme's own
+// error is a fraction of it at any stable step (tests/dem/energy_test.cpp: below half at the
+// stability limit); an unstable integration grows the kinetic energy geometrically and crosses
+// ten times the input (plus a floor far below any physical energy of the scene) within a few
+// checks.
+void check_energy(const DemModel& m, double floor) {
+  check_finite(m);
+  const double input = m.energy_input();
+  const double ke = m.kinetic_energy();
+  if (ke > 10 * std::max(input, 0.0) + floor) {
+    std::ostringstream msg;
+    msg << "dem: the integration blew up at t = " << m.time() << " s (cycle " << m.cycles() << "): kinetic energy " << ke
+        << " J exceeds the energy put in by gravity, loads and supports (" << input
+        << " J); time step too close to the stability limit for these stiffnesses and masses";
+    throw std::runtime_error(msg.str());
+  }
+}
 
 struct HoldOutcome {
   bool settled = false;
@@ -32,20 +77,22 @@ std::vector<DemBlockState> snapshot(const DemModel& m, const Case& c) {
 
 // Cycles with the supports still until equilibrium, the time budget, or a runaway (a block has
 // travelled past the collapse drift: waiting out the budget would only confirm it).
-HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, double collapse_drift) {
+HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, double collapse_drift, double energy_floor) {
   HoldOutcome o;
   const std::vector<DemBlockState> start = snapshot(m, c);
   const long long budget = static_cast<long long>(std::ceil(s.hold_time / m.dt()));
-  const long long check = 64;  // cycles between drift checks; the drift is slow against this
   for (long long k = 0; k < budget; ++k) {
     m.cycle();
     ++o.cycles;
-    if (!std::isfinite(m.unbalanced_ratio())) throw std::runtime_error("dem: the integration produced a non-finite force");
+    check_finite(m);
     if (m.unbalanced_ratio() < s.equilibrium_tolerance && m.max_speed() < s.velocity_tolerance) {
       o.settled = true;
       break;
     }
-    if (k % check == 0 && largest_move(m, c, start) > collapse_drift) break;
+    if (k % kCheckEvery == 0) {
+      check_energy(m, energy_floor);
+      if (largest_move(m, c, start) > collapse_drift) break;
+    }
   }
   o.drift = largest_move(m, c, start);
   o.time = o.cycles * m.dt();
@@ -68,7 +115,8 @@ double travelled(double u, double r) {
 RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(const RunResult&)>& on_step) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  double io_s = 0;
+  const double cpu0 = thread_cpu_s();
+  double io_s = 0, io_cpu_s = 0;
   RunResult r;
   r.method = "dem";
   r.case_name = c.name;
@@ -80,6 +128,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
 
   DemModel m(c, s);
   const double collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
+  const double energy_floor = 1e-9 * r.total_weight * scene_size(c);
   r.settings = {{"young_modulus", s.young_modulus},
                 {"poisson", s.poisson},
                 {"kn", m.kn()},
@@ -115,9 +164,12 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
     r.timing.cycles = m.cycles();
     if (on_step) {
       const auto a = clock::now();
-      r.timing.total_s = std::chrono::duration<double>(a - t0).count() - io_s;
+      const double a_cpu = thread_cpu_s();
+      r.timing.total_s = a_cpu - cpu0 - io_cpu_s;
+      r.extra["wall_s"] = std::chrono::duration<double>(a - t0).count() - io_s;
       on_step(r);
       io_s += std::chrono::duration<double>(clock::now() - a).count();
+      io_cpu_s += thread_cpu_s() - a_cpu;
     }
   };
   auto fail = [&](const std::string& msg) {
@@ -127,7 +179,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
 
   try {
     m.set_support_parameter(0);
-    const HoldOutcome h0 = hold(m, c, s, collapse_drift);
+    const HoldOutcome h0 = hold(m, c, s, collapse_drift, energy_floor);
     if (h0.settled) {
       r.stable_steps = 0;
       r.capacity = 0;
@@ -146,9 +198,11 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
         for (long long i = 1; i <= n_move; ++i) {
           m.set_support_parameter(d0 + s.step * travelled(static_cast<double>(i) / static_cast<double>(n_move), s.ramp_fraction));
           m.cycle();
+          check_finite(m);
+          if (i % kCheckEvery == 0) check_energy(m, energy_floor);
         }
         m.set_support_parameter(k * s.step);
-        const HoldOutcome h = hold(m, c, s, collapse_drift);
+        const HoldOutcome h = hold(m, c, s, collapse_drift, energy_floor);
         if (h.settled) {
           r.capacity = k * s.step;
           ++r.stable_steps;
@@ -165,7 +219,8 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
     fail(e.what());
   }
   r.timing.cycles = m.cycles();
-  r.timing.total_s = std::chrono::duration<double>(clock::now() - t0).count() - io_s;
+  r.timing.total_s = thread_cpu_s() - cpu0 - io_cpu_s;
+  r.extra["wall_s"] = std::chrono::duration<double>(clock::now() - t0).count() - io_s;
   return r;
 }
 

@@ -52,7 +52,7 @@ struct JointInfo {
 };
 
 struct Timing {
-  double total_s = 0.0;  // wall time of the run without I/O
+  double total_s = 0.0;  // PRD: wall time of the run without I/O; DEM: the run's thread CPU time
   double lp_s = 0.0;     // PRD: time in GLPK
   long long lp_solves = 0;
   long long cycles = 0;  // DEM: integration cycles
