@@ -198,14 +198,13 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     << "</text>\n";
 }
 
-// "Nice" tick step for a range.
+}  // namespace
+
 double nice_step(double range, int n) {
   if (!(range > 0)) return 1;
   const double raw = range / n, p = std::pow(10.0, std::floor(std::log10(raw))), q = raw / p;
   return (q < 1.5 ? 1 : q < 3 ? 2 : q < 7 ? 5 : 10) * p;
 }
-
-}  // namespace
 
 std::string xml_escape(const std::string& s) {
   std::string o;

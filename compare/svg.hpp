@@ -13,6 +13,9 @@ namespace masonry {
 // Escapes & < > " ' for XML/HTML text and attribute values.
 std::string xml_escape(const std::string& s);
 
+// A "nice" tick step (1, 2 or 5 times a power of ten) giving about n ticks over `range`.
+double nice_step(double range, int n);
+
 // World window and force scale shared by every structure drawing of one comparison, so frames
 // do not jump and forces are comparable between methods and steps.
 struct DrawFrame {

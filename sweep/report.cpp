@@ -1,0 +1,394 @@
+// The sweep's report, in the compare style: sweep.json for CI, report.md and report.html (no
+// script: a figure and tables), figures/capacity.svg.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include "format.hpp"
+#include "report.hpp"
+#include "svg.hpp"
+#include "sweep.hpp"
+
+namespace masonry {
+
+using nlohmann::json;
+using ojson = nlohmann::ordered_json;
+
+namespace {
+
+const char* kCurveColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"};
+
+ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
+std::string f1(double x) { return fmt::number(x, "%.1f", x); }
+std::string pct(double x) { return fmt::number(x, "%+.1f%%", x * 100); }
+std::string secs(double s) { return fmt::number(s, s < 10 ? "%.3g" : "%.0f", s); }
+
+const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
+double x_of(const SweepPlan& p, const SweepSummary& s, int run) {
+  for (size_t k = 0; k < p.keys.size(); ++k)
+    if (p.keys[k] == s.x) return p.runs[run].values[k].get<double>();
+  return NAN;
+}
+bool friction_x(const SweepSummary& s) { return s.x == "dem.friction_angle"; }
+
+// The PRD run every point of a curve refers to, when it is one run (x is a DEM option).
+const SweepRow* curve_prd(const SweepPlan& p, const SweepTable& t, const SweepCurve& c) {
+  int prd = -1;
+  for (int i : c.runs) {
+    if (p.runs[i].method != "dem" || p.runs[i].prd < 0 || (prd >= 0 && p.runs[i].prd != prd)) return nullptr;
+    prd = p.runs[i].prd;
+  }
+  const SweepRow* r = row_at(t, prd);
+  return r && r->stopped != "error" ? r : nullptr;
+}
+
+// An option's value for people: numbers to 6 digits (sweep.csv keeps every digit).
+std::string shown(const json& v) { return v.is_number() ? fmt::g(v.get<double>(), 6) : value_text(v); }
+
+std::string curve_label(const SweepCurve& c, bool dem) {
+  std::string s;
+  for (const auto& [key, value] : c.fixed) s += (s.empty() ? "" : ", ") + key + " = " + shown(value);
+  return s.empty() ? (dem ? "DEM" : "PRD") : s;
+}
+
+std::string x_title(const SweepSummary& s) { return friction_x(s) ? "friction angle (deg)" : s.x; }
+
+bool any_dem(const SweepPlan& p) {
+  for (const SweepRun& r : p.runs)
+    if (r.method == "dem") return true;
+  return false;
+}
+
+// A table of plain-text cells, written as Markdown or HTML (escaped by each writer).
+struct Table {
+  std::vector<std::string> head;
+  std::vector<std::vector<std::string>> rows;
+  std::string markdown() const {
+    std::string o;
+    const auto line = [&](const std::vector<std::string>& cells) {
+      o += '|';
+      for (const std::string& c : cells) {
+        o += ' ';
+        o += md_escape(c);
+        o += " |";
+      }
+      o += '\n';
+    };
+    line(head);
+    o += '|';
+    for (const bool right : numeric_columns()) o += right ? "---:|" : "---|";
+    o += '\n';
+    for (const auto& r : rows) line(r);
+    o += '\n';
+    return o;
+  }
+  // A column of numbers (or dashes) is right-aligned, text left.
+  std::vector<bool> numeric_columns() const {
+    std::vector<bool> numeric(head.size(), false), text(head.size(), false);
+    for (const auto& r : rows)
+      for (size_t k = 0; k < r.size() && k < head.size(); ++k) {
+        if (r[k] == "-" || r[k].empty()) continue;
+        char* end = nullptr;
+        std::strtod(r[k].c_str(), &end);
+        (end != r[k].c_str() && (*end == '\0' || *end == '%') ? numeric : text)[k] = true;
+      }
+    for (size_t k = 0; k < head.size(); ++k) numeric[k] = numeric[k] && !text[k];
+    return numeric;
+  }
+  std::string html() const {
+    const std::vector<bool> right = numeric_columns();
+    std::string o = "<table><tr>";
+    for (size_t k = 0; k < head.size(); ++k) {
+      o += right[k] ? "<th>" : "<th class=\"text\">";
+      o += xml_escape(head[k]);
+      o += "</th>";
+    }
+    o += "</tr>\n";
+    for (const auto& r : rows) {
+      o += "<tr>";
+      for (size_t k = 0; k < r.size(); ++k) {
+        o += k < right.size() && right[k] ? "<td>" : "<td class=\"text\">";
+        o += xml_escape(r[k]);
+        o += "</td>";
+      }
+      o += "</tr>\n";
+    }
+    return o + "</table>\n";
+  }
+};
+
+// The report's text, shared by the Markdown and the HTML writers.
+struct Content {
+  std::string title, lead;
+  std::vector<std::string> findings;  // one sentence each
+  Table boundaries, runs;
+  bool has_figure = false;
+};
+
+Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) {
+  Content c;
+  c.title = "Sweep: " + p.name;
+  int prd = 0;
+  for (const SweepRun& r : p.runs) prd += r.method == "prd";
+  c.lead = "Case " + p.base.name + " (sweep file " + p.source + ", plan " + p.hash + "): " + std::to_string(p.runs.size()) + " runs (" +
+           std::to_string(prd) + " PRD, " + std::to_string(p.runs.size() - prd) + " DEM), " + std::to_string(s.finished) + " finished, " +
+           std::to_string(s.errors) + " failed. Capacity: the last stable d (m); difference: (DEM - PRD) / PRD; tolerance " +
+           fmt::g(p.tolerance * 100) + "%.";
+  c.has_figure = !s.x.empty() && !s.curves.empty();
+  const bool dem = any_dem(p);
+  if (friction_x(s) && dem) {
+    c.boundaries.head = {"curve", "PRD capacity (m)", "PRD: sliding below (deg)", "DEM and PRD differ by more than " + fmt::g(p.tolerance * 100) + "% up to (deg)"};
+    for (const SweepCurve& cv : s.curves) {
+      const SweepRow* pr = curve_prd(p, t, cv);
+      std::string b = cv.boundary ? fmt::g(*cv.boundary, 6) : "nowhere";
+      if (cv.boundary && !cv.boundary_clean) b += " (not a clean boundary: agreement below it, or disagreement above)";
+      c.boundaries.rows.push_back({curve_label(cv, dem), pr ? fmt::g(pr->capacity, 4) : "-",
+                                   pr && pr->required_friction_angle ? fmt::g(*pr->required_friction_angle, 4) : "-", b});
+      if (cv.boundary)
+        c.findings.push_back(curve_label(cv, dem) + ": the DEM capacity differs from the PRD's by more than " + fmt::g(p.tolerance * 100) +
+                             "% at friction angles up to " + fmt::g(*cv.boundary, 6) + " deg" +
+                             (pr && pr->required_friction_angle ? "; the PRD's sliding check predicts sliding below " + fmt::g(*pr->required_friction_angle, 4) + " deg." : "."));
+    }
+  }
+  c.runs.head = {"run", "method"};
+  for (const std::string& k : p.keys) c.runs.head.push_back(k);
+  for (const char* h : {"capacity (m)", "stopped", "difference from PRD", "PRD: sliding below (deg)", "time (s)", "message"}) c.runs.head.push_back(h);
+  for (const SweepRun& run : p.runs) {
+    std::vector<std::string> r = {std::to_string(run.index), run.method};
+    for (const json& v : run.values) r.push_back(v.is_null() ? "-" : shown(v));
+    const SweepRow* row = row_at(t, run.index);
+    if (!row) {
+      for (const char* x : {"-", "not run", "-", "-", "-", ""}) r.push_back(x);
+    } else {
+      const auto d = run.method == "dem" ? diff_prd(*row, row_at(t, run.prd)) : std::nullopt;
+      r.push_back(row->stopped == "error" ? "-" : fmt::g(row->capacity, 6));
+      r.push_back(row->stopped);
+      r.push_back(d ? pct(*d) : "-");
+      r.push_back(row->required_friction_angle ? fmt::g(*row->required_friction_angle, 4) : "-");
+      r.push_back(secs(row->time_s));
+      r.push_back(row->message);
+    }
+    c.runs.rows.push_back(std::move(r));
+  }
+  return c;
+}
+
+}  // namespace
+
+ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) {
+  ojson j;
+  j["format"] = "masonry-sweep-results/1";
+  j["units"] = "SI: capacity in m (the last stable d), time in s; friction angles in degrees";
+  j["name"] = p.name;
+  j["spec"] = p.source;
+  j["case"] = p.base.name;
+  j["plan"] = p.hash;
+  j["methods"] = p.methods;
+  j["keys"] = p.keys;
+  j["tolerance"] = p.tolerance;
+  j["complete"] = s.finished == static_cast<int>(p.runs.size());
+  j["failed"] = s.errors;
+  ojson runs = ojson::array();
+  for (const SweepRun& run : p.runs) {
+    const SweepRow* row = row_at(t, run.index);
+    if (!row) continue;
+    ojson params = ojson::object();
+    for (size_t k = 0; k < p.keys.size(); ++k)
+      if (!run.values[k].is_null()) params[p.keys[k]] = ojson::parse(run.values[k].dump());
+    const auto d = run.method == "dem" ? diff_prd(*row, row_at(t, run.prd)) : std::nullopt;
+    runs.push_back({{"run", run.index},
+                    {"id", run.id},
+                    {"method", run.method},
+                    {"parameters", params},
+                    {"stopped", row->stopped},
+                    {"capacity", row->stopped == "error" ? ojson(nullptr) : num(row->capacity)},
+                    {"time_s", num(row->time_s)},
+                    {"prd_run", run.prd >= 0 ? ojson(run.prd) : ojson(nullptr)},
+                    {"diff_prd", d ? num(*d) : ojson(nullptr)},
+                    {"required_friction_angle", row->required_friction_angle ? num(*row->required_friction_angle) : ojson(nullptr)},
+                    {"message", row->message}});
+  }
+  j["runs"] = runs;
+  j["x"] = s.x.empty() ? ojson(nullptr) : ojson(s.x);
+  ojson curves = ojson::array();
+  for (const SweepCurve& c : s.curves) {
+    ojson fixed = ojson::object();
+    for (const auto& [key, value] : c.fixed) fixed[key] = ojson::parse(value.dump());
+    const SweepRow* pr = curve_prd(p, t, c);
+    curves.push_back({{"parameters", fixed},
+                      {"runs", c.runs},
+                      {"prd_capacity", pr ? num(pr->capacity) : ojson(nullptr)},
+                      {"prd_required_friction_angle", pr && pr->required_friction_angle ? num(*pr->required_friction_angle) : ojson(nullptr)},
+                      {"boundary", c.boundary ? num(*c.boundary) : ojson(nullptr)},
+                      {"boundary_clean", c.boundary_clean}});
+  }
+  j["curves"] = curves;
+  return j;
+}
+
+std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) {
+  const double W = 860, left = 74, right = 270, top = 44, ph = 360, H = top + ph + 56;
+  const double pw = W - left - right;
+  const bool dem = any_dem(p), fx = friction_x(s);
+  // Ranges: every point, every PRD capacity, every vertical marker.
+  double xlo = std::numeric_limits<double>::max(), xhi = -xlo, ymax = 0;
+  const auto cover_x = [&](double x) { xlo = std::min(xlo, x), xhi = std::max(xhi, x); };
+  for (const SweepCurve& c : s.curves) {
+    for (int i : c.runs) {
+      cover_x(x_of(p, s, i));
+      ymax = std::max(ymax, t[i]->capacity);
+      if (const SweepRow* pr = dem ? row_at(t, p.runs[i].prd) : nullptr; pr && pr->stopped != "error") ymax = std::max(ymax, pr->capacity);
+    }
+    if (const SweepRow* pr = curve_prd(p, t, c); fx && pr && pr->required_friction_angle) cover_x(*pr->required_friction_angle);
+  }
+  if (xlo > xhi) xlo = 0, xhi = 1;
+  if (xhi - xlo < 1e-12) xlo -= 1, xhi += 1;
+  const double padx = 0.04 * (xhi - xlo);
+  xlo -= padx;
+  xhi += padx;
+  if (!(ymax > 0)) ymax = 1e-3;
+  ymax *= 1.1;
+  const auto X = [&](double x) { return left + (x - xlo) / (xhi - xlo) * pw; };
+  const auto Y = [&](double y) { return top + (1 - y / ymax) * ph; };
+  std::ostringstream o;
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 " << f1(W) << " " << f1(H)
+    << "\" font-family=\"Helvetica, Arial, sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n"
+    << "<text x=\"" << f1(left) << "\" y=\"22\" font-size=\"15\" font-weight=\"bold\">Capacity against the " << xml_escape(x_title(s))
+    << "</text>\n<g font-size=\"11\" fill=\"#333\">\n";
+  const double ty = nice_step(ymax, 6), tx = nice_step(xhi - xlo, 8);
+  for (double y = 0; y <= ymax + 1e-15; y += ty)
+    o << "<line x1=\"" << f1(left) << "\" x2=\"" << f1(left + pw) << "\" y1=\"" << f1(Y(y)) << "\" y2=\"" << f1(Y(y)) << "\" stroke=\""
+      << (y == 0 ? "#999" : "#e6e6e6") << "\"/><text x=\"" << f1(left - 6) << "\" y=\"" << f1(Y(y) + 4) << "\" text-anchor=\"end\">"
+      << fmt::g(y, 4) << "</text>\n";
+  for (double x = std::ceil(xlo / tx) * tx; x <= xhi + 1e-12; x += tx)
+    o << "<line x1=\"" << f1(X(x)) << "\" x2=\"" << f1(X(x)) << "\" y1=\"" << f1(top) << "\" y2=\"" << f1(top + ph)
+      << "\" stroke=\"#eeeeee\"/><text x=\"" << f1(X(x)) << "\" y=\"" << f1(top + ph + 14) << "\" text-anchor=\"middle\">"
+      << fmt::g(std::abs(x) < tx * 1e-9 ? 0.0 : x, 6) << "</text>\n";
+  o << "<rect x=\"" << f1(left) << "\" y=\"" << f1(top) << "\" width=\"" << f1(pw) << "\" height=\"" << f1(ph) << "\" fill=\"none\" stroke=\"#333\"/>\n"
+    << "<text x=\"" << f1(left + pw / 2) << "\" y=\"" << f1(top + ph + 34) << "\" text-anchor=\"middle\" font-size=\"13\">" << xml_escape(x_title(s))
+    << "</text>\n<text transform=\"translate(" << f1(left - 52) << "," << f1(top + ph / 2)
+    << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">capacity: last stable d (m)</text>\n</g>\n";
+  for (size_t ci = 0; ci < s.curves.size(); ++ci) {
+    const SweepCurve& c = s.curves[ci];
+    const char* col = kCurveColors[ci % 8];
+    // The PRD reference: one horizontal line when every point has the same PRD run.
+    if (dem) {
+      const SweepRow* pr = curve_prd(p, t, c);
+      std::string pts;
+      if (pr) {
+        pts = f1(X(xlo)) + "," + f1(Y(pr->capacity)) + " " + f1(X(xhi)) + "," + f1(Y(pr->capacity));
+      } else {
+        for (int i : c.runs)
+          if (const SweepRow* q = row_at(t, p.runs[i].prd); q && q->stopped != "error")
+            pts += f1(X(x_of(p, s, i))) + "," + f1(Y(q->capacity)) + " ";
+      }
+      if (!pts.empty())
+        o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"1.8\" stroke-dasharray=\"8,5\" points=\"" << pts
+          << "\"><title>PRD capacity</title></polyline>\n";
+      if (fx && pr && pr->required_friction_angle)
+        o << "<line x1=\"" << f1(X(*pr->required_friction_angle)) << "\" x2=\"" << f1(X(*pr->required_friction_angle)) << "\" y1=\""
+          << f1(top) << "\" y2=\"" << f1(top + ph) << "\" stroke=\"" << col << "\" stroke-width=\"1.6\" stroke-dasharray=\"2,3\"><title>PRD: sliding below "
+          << fmt::g(*pr->required_friction_angle, 4) << " deg</title></line>\n";
+      if (c.boundary)
+        o << "<line x1=\"" << f1(X(*c.boundary)) << "\" x2=\"" << f1(X(*c.boundary)) << "\" y1=\"" << f1(top) << "\" y2=\"" << f1(top + ph)
+          << "\" stroke=\"" << col << "\" stroke-width=\"1.4\" stroke-dasharray=\"10,3,2,3\"><title>DEM and PRD differ by more than "
+          << fmt::g(p.tolerance * 100) << "% up to " << fmt::g(*c.boundary, 6) << "</title></line>\n";
+    }
+    std::string pts;
+    for (int i : c.runs) pts += f1(X(x_of(p, s, i))) + "," + f1(Y(t[i]->capacity)) + " ";
+    o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"2\" points=\"" << pts << "\"/>\n<g fill=\"" << col << "\">\n";
+    for (int i : c.runs)
+      o << "<circle cx=\"" << f1(X(x_of(p, s, i))) << "\" cy=\"" << f1(Y(t[i]->capacity)) << "\" r=\"3.5\"><title>run " << i << ": "
+        << xml_escape(run_label(p, p.runs[i])) << ": " << fmt::g(t[i]->capacity, 6) << " m, " << xml_escape(t[i]->stopped) << "</title></circle>\n";
+    o << "</g>\n";
+  }
+  // Legend on the right: the curves, then the line styles.
+  double ly = top + 8;
+  const double lx = left + pw + 16;
+  o << "<g font-size=\"12\">\n";
+  for (size_t ci = 0; ci < s.curves.size(); ++ci, ly += 18)
+    o << "<rect x=\"" << f1(lx) << "\" y=\"" << f1(ly - 6) << "\" width=\"28\" height=\"10\" fill=\"" << kCurveColors[ci % 8] << "\"/><text x=\""
+      << f1(lx + 34) << "\" y=\"" << f1(ly + 4) << "\">" << xml_escape(curve_label(s.curves[ci], dem)) << "</text>\n";
+  ly += 8;
+  const auto style = [&](const char* dash, const std::string& text) {
+    o << "<line x1=\"" << f1(lx) << "\" x2=\"" << f1(lx + 28) << "\" y1=\"" << f1(ly) << "\" y2=\"" << f1(ly) << "\" stroke=\"#333\" stroke-width=\"1.8\""
+      << (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : std::string()) << "/><text x=\"" << f1(lx + 34) << "\" y=\"" << f1(ly + 4)
+      << "\">" << xml_escape(text) << "</text>\n";
+    ly += 18;
+  };
+  bool predicted = false, bounded = false;
+  for (const SweepCurve& c : s.curves) {
+    const SweepRow* pr = curve_prd(p, t, c);
+    predicted = predicted || (pr && pr->required_friction_angle);
+    bounded = bounded || c.boundary;
+  }
+  style("", dem ? "DEM capacity (points: runs)" : "PRD capacity (points: runs)");
+  if (dem) style("8,5", "PRD capacity");
+  if (dem && fx && predicted) style("2,3", "PRD: sliding predicted below");
+  if (dem && fx && bounded) style("10,3,2,3", "differ by > " + fmt::g(p.tolerance * 100) + "% up to here");
+  o << "</g>\n</svg>\n";
+  return o.str();
+}
+
+std::string sweep_markdown(const SweepPlan& p, const SweepTable& t, const SweepSummary& s, const std::string& command) {
+  const Content c = content(p, t, s);
+  std::ostringstream o;
+  o << "# " << md_escape(c.title) << "\n\n";
+  if (!p.description.empty()) o << md_escape(p.description) << "\n\n";
+  std::string cmd = command;  // a code span cannot escape a backtick
+  std::replace(cmd.begin(), cmd.end(), '`', '\'');
+  if (!cmd.empty()) o << "Made with `" << cmd << "`; the table is `sweep.csv`, the numbers also in `sweep.json`.\n\n";
+  o << md_escape(c.lead) << "\n\n";
+  if (c.has_figure) o << "## Capacity against the " << md_escape(x_title(s)) << "\n\n![capacity against " << md_escape(s.x) << "](figures/capacity.svg)\n\n";
+  if (!c.boundaries.head.empty()) {
+    o << "## Where DEM and PRD part\n\n";
+    for (const std::string& f : c.findings) o << "- " << md_escape(f) << "\n";
+    o << (c.findings.empty() ? "" : "\n") << c.boundaries.markdown();
+  }
+  o << "## Runs\n\n" << c.runs.markdown();
+  return o.str();
+}
+
+std::string sweep_html(const SweepPlan& p, const SweepTable& t, const SweepSummary& s, const std::string& command) {
+  const Content c = content(p, t, s);
+  std::ostringstream o;
+  // No script at all: the page is a figure and tables, so the policy allows none.
+  o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+    << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">\n<title>"
+    << xml_escape(c.title) << "</title>\n<style>\nbody{font-family:Helvetica,Arial,sans-serif;max-width:1040px;margin:1em auto;padding:0 1em;color:#222}\n"
+    << "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
+       ".text{text-align:left}\nsvg{max-width:100%;height:auto}\n</style>\n</head>\n<body>\n"
+    << "<h1>" << xml_escape(c.title) << "</h1>\n";
+  if (!p.description.empty()) o << "<p>" << xml_escape(p.description) << "</p>\n";
+  if (!command.empty()) o << "<p>Made with <code>" << xml_escape(command) << "</code>; the table is <code>sweep.csv</code>, the numbers also in <code>sweep.json</code>.</p>\n";
+  o << "<p>" << xml_escape(c.lead) << "</p>\n";
+  if (c.has_figure) o << "<h2>Capacity against the " << xml_escape(x_title(s)) << "</h2>\n" << svg_sweep(p, t, s);
+  if (!c.boundaries.head.empty()) {
+    o << "<h2>Where DEM and PRD part</h2>\n";
+    if (!c.findings.empty()) {
+      o << "<ul>\n";
+      for (const std::string& f : c.findings) o << "<li>" << xml_escape(f) << "</li>\n";
+      o << "</ul>\n";
+    }
+    o << c.boundaries.html();
+  }
+  o << "<h2>Runs</h2>\n" << c.runs.html() << "</body>\n</html>\n";
+  return o.str();
+}
+
+void write_sweep_outputs(const std::string& dir, const SweepPlan& p, const SweepTable& t, const std::string& command) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir + "/figures", ec);
+  if (ec) throw SweepError(dir + ": cannot create the report directory: " + ec.message());
+  const SweepSummary s = summarize(p, t);
+  write_file_atomic(dir + "/sweep.csv", sweep_csv(p, t));
+  write_file_atomic(dir + "/sweep.json", sweep_json(p, t, s).dump(1) + "\n");
+  if (!s.x.empty() && !s.curves.empty()) write_file_atomic(dir + "/figures/capacity.svg", svg_sweep(p, t, s));
+  write_file_atomic(dir + "/report.md", sweep_markdown(p, t, s, command));
+  write_file_atomic(dir + "/report.html", sweep_html(p, t, s, command));
+}
+
+}  // namespace masonry

@@ -1,0 +1,183 @@
+// Running a sweep on this machine: one run, the thread pool, resuming the table.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "dem.hpp"
+#include "prd.hpp"
+#include "runner.hpp"
+
+namespace masonry {
+
+SweepRow execute_run(const SweepPlan& p, const SweepRun& run) {
+  SweepRow row;
+  row.index = run.index;
+  row.id = run.id;
+  row.method = run.method;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    const Case c = run_case(p, run);
+    const RunResult r = run.method == "prd" ? prd_run(c, PrdSettings::from_case(c)) : dem_run(c, DemSettings::from_case(c));
+    row.capacity = r.capacity;
+    row.time_s = r.timing.total_s;
+    row.message = r.message;
+    row.stopped = r.stopped;
+    if (r.stopped != "collapse" && r.stopped != "max_steps") {
+      row.stopped = "error";
+      if (row.message.empty()) row.message = "the run ended as '" + r.stopped + "'";
+    }
+    // The PRD's sliding check (prd/): the friction angle below which its run would slide.
+    const auto sliding = r.extra.find("sliding");
+    if (sliding != r.extra.end() && sliding->is_object()) {
+      const auto angle = sliding->find("required_friction_angle");
+      if (angle != sliding->end() && angle->is_number() && std::isfinite(angle->get<double>()))
+        row.required_friction_angle = angle->get<double>();
+    }
+  } catch (const std::exception& e) {
+    row.stopped = "error";
+    row.message = e.what();
+    row.capacity = 0;
+    row.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  for (char& ch : row.message)
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  return row;
+}
+
+namespace sweep_detail {
+
+Prepared prepare(const SweepInput& in, const SweepOptions& o) {
+  Prepared pr;
+  pr.plan = plan_sweep(in);
+  std::error_code ec;
+  std::filesystem::create_directories(o.out_dir, ec);
+  if (ec) throw SweepError(o.out_dir + ": cannot create the output directory: " + ec.message());
+  pr.csv_path = o.out_dir + "/sweep.csv";
+  pr.table.assign(pr.plan.runs.size(), std::nullopt);
+  if (!o.restart && std::filesystem::exists(pr.csv_path)) {
+    std::ifstream f(pr.csv_path, std::ios::binary);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    pr.table = read_sweep_csv(pr.plan, ss.str(), pr.csv_path);
+  }
+  write_file_atomic(pr.csv_path, sweep_csv(pr.plan, pr.table));
+  for (size_t i = 0; i < pr.table.size(); ++i)
+    if (!pr.table[i]) pr.todo.push_back(static_cast<int>(i));
+  return pr;
+}
+
+Recorder::Recorder(Prepared& pr, const SweepOptions& o, int workers, const std::string& where)
+    : pr_(pr), o_(o), file_(pr.csv_path, std::ios::binary | std::ios::app) {
+  if (!file_) throw SweepError(pr.csv_path + ": cannot append");
+  if (o_.quiet) return;
+  int prd = 0;
+  for (const SweepRun& r : pr.plan.runs) prd += r.method == "prd";
+  std::fprintf(stderr, "sweep: %s: %zu runs (%d PRD, %zu DEM); %zu in %s already, %zu to run on %d %s\n", pr.plan.name.c_str(),
+               pr.plan.runs.size(), prd, pr.plan.runs.size() - prd, pr.plan.runs.size() - pr.todo.size(), pr.csv_path.c_str(),
+               pr.todo.size(), workers, where.c_str());
+}
+
+void Recorder::operator()(const SweepRow& r) {
+  pr_.table.at(r.index) = r;
+  file_ << sweep_csv_line(pr_.plan, r, pr_.table) << std::flush;
+  if (!file_) throw SweepError(pr_.csv_path + ": write failed");
+  ++done_;
+  if (o_.quiet) return;
+  const SweepRun& run = pr_.plan.runs[r.index];
+  const std::string label = run_label(pr_.plan, run);
+  if (r.stopped == "error")
+    std::fprintf(stderr, "sweep: [%zu/%zu] run %d %s (%s): error: %s\n", done_, pr_.todo.size(), r.index, r.method.c_str(), label.c_str(),
+                 r.message.c_str());
+  else
+    std::fprintf(stderr, "sweep: [%zu/%zu] run %d %s (%s): %s, capacity %.6g m, %.3g s\n", done_, pr_.todo.size(), r.index,
+                 r.method.c_str(), label.c_str(), r.stopped.c_str(), r.capacity, r.time_s);
+}
+
+int Recorder::finish() {
+  file_.close();
+  write_sweep_outputs(o_.out_dir, pr_.plan, pr_.table, o_.command);
+  const SweepSummary s = summarize(pr_.plan, pr_.table);
+  if (!o_.quiet) {
+    std::fprintf(stderr, "sweep: %d rows, %d failed; table %s, report %s/report.html and %s/report.md\n", s.finished, s.errors,
+                 pr_.csv_path.c_str(), o_.out_dir.c_str(), o_.out_dir.c_str());
+    for (const SweepCurve& c : s.curves)
+      if (c.boundary)
+        std::fprintf(stderr, "sweep: DEM and PRD differ by more than %g%% up to a friction angle of %g deg\n", pr_.plan.tolerance * 100,
+                     *c.boundary);
+  }
+  return s.errors > 0 ? 1 : 0;
+}
+
+void execute_runs(const SweepPlan& p, const std::vector<int>& todo, int jobs, const std::function<void(const SweepRow&)>& done,
+                  const std::function<void()>& idle) {
+  std::vector<int> dem;
+  // GLPK keeps one environment per thread (thread-local in Debian's build), and a pool thread's
+  // would be left behind when the thread ends: PRD runs, a few LPs each, stay on this thread.
+  for (int i : todo) {
+    if (p.runs[i].method != "prd") {
+      dem.push_back(i);
+      continue;
+    }
+    done(execute_run(p, p.runs[i]));
+    if (idle) idle();
+  }
+  if (dem.empty()) return;
+  std::mutex m;
+  std::condition_variable cv;
+  std::deque<SweepRow> ready;
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t k; (k = next++) < dem.size();) {
+      SweepRow r = execute_run(p, p.runs[dem[k]]);
+      std::lock_guard<std::mutex> lock(m);
+      ready.push_back(std::move(r));
+      cv.notify_all();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 0; t < std::max(1, std::min<int>(jobs, static_cast<int>(dem.size()))); ++t) pool.emplace_back(work);
+  try {
+    for (size_t received = 0; received < dem.size();) {
+      std::deque<SweepRow> got;
+      {
+        std::unique_lock<std::mutex> lock(m);
+        if (idle)
+          cv.wait_for(lock, std::chrono::milliseconds(10), [&] { return !ready.empty(); });
+        else
+          cv.wait(lock, [&] { return !ready.empty(); });
+        got.swap(ready);
+      }
+      for (const SweepRow& r : got) {
+        done(r);
+        ++received;
+      }
+      if (idle) idle();
+    }
+  } catch (...) {
+    next = dem.size();  // no new runs; the running ones finish, then the error goes on
+    for (std::thread& t : pool) t.join();
+    throw;
+  }
+  for (std::thread& t : pool) t.join();
+}
+
+}  // namespace sweep_detail
+
+SweepTable run_sweep(const SweepInput& in, const SweepOptions& o) {
+  sweep_detail::Prepared pr = sweep_detail::prepare(in, o);
+  const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  sweep_detail::Recorder record(pr, o, jobs, jobs == 1 ? "thread" : "threads");
+  sweep_detail::execute_runs(pr.plan, pr.todo, jobs, std::ref(record), {});
+  record.finish();
+  return pr.table;
+}
+
+}  // namespace masonry

@@ -1,0 +1,211 @@
+// `masonry sweep` as a command: a failing run is a row and the sweep goes on; a sweep killed half
+// way resumes with the missing runs only; a table of another sweep is refused unless --restart;
+// and the same sweep on 1 and 2 MPI ranks (mpirun on this machine) gives the same table.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+
+#include <chrono>
+#include <fcntl.h>
+#include <map>
+#include <set>
+#include <thread>
+
+#include "util.hpp"
+
+extern char** environ;
+
+namespace masonry {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kExe = MASONRY_EXE;
+
+std::string spec(const std::string& body) {
+  return R"({"format": "masonry-sweep/1", "case": ")" + test::kTiltCase + R"(", )" + body + "}";
+}
+
+// Data lines of a sweep.csv (complete lines only).
+std::vector<std::string> data_lines(const std::string& csv) {
+  std::vector<std::string> out;
+  size_t pos = csv.find('\n');
+  while (pos != std::string::npos && pos + 1 < csv.size()) {
+    const size_t nl = csv.find('\n', pos + 1);
+    if (nl == std::string::npos) break;
+    out.push_back(csv.substr(pos + 1, nl - pos - 1));
+    pos = nl;
+  }
+  return out;
+}
+
+// "sweep: [k/n] run I ..." progress lines: the runs an invocation did.
+std::set<int> runs_done(const std::string& progress) {
+  std::set<int> s;
+  std::istringstream in(progress);
+  for (std::string line; std::getline(in, line);) {
+    const size_t at = line.find("] run ");
+    if (line.rfind("sweep: [", 0) == 0 && at != std::string::npos) s.insert(std::stoi(line.substr(at + 6)));
+  }
+  return s;
+}
+
+TEST(SweepCommand, AFailedRunIsARowAndTheSweepGoesOn) {
+  test::Scratch d("fail");
+  // A friction angle the case refuses, and a time step the DEM refuses: three of four runs fail.
+  test::write(d.path / "s.json", spec(R"("methods": ["dem"], "vary": {"dem.timestep_factor": [2.0, 0.2], "dem.friction_angle": [95, 30.5]})"));
+  const fs::path out = d.path / "out", err = d.path / "err.txt";
+  EXPECT_EQ(test::run(kExe + " sweep " + (d.path / "s.json").string() + " --out " + out.string() + " 2>" + err.string()), 1)
+      << test::read(err);
+  const auto rows = test::csv_rows(test::read(out / "sweep.csv"));
+  ASSERT_EQ(rows.size(), 5u) << test::read(out / "sweep.csv");
+  const size_t st = test::column(rows[0], "stopped"), msg = test::column(rows[0], "message"), cap = test::column(rows[0], "capacity");
+  ASSERT_LT(msg, rows[0].size());
+  // Runs: (2, 95), (2, 30.5), (0.2, 95), (0.2, 30.5).
+  for (int i : {1, 3}) {
+    EXPECT_EQ(rows[i][st], "error");
+    EXPECT_NE(rows[i][msg].find("friction_angle"), std::string::npos) << rows[i][msg];
+    EXPECT_EQ(rows[i][cap], "");
+  }
+  EXPECT_EQ(rows[2][st], "error");
+  EXPECT_NE(rows[2][msg].find("stability limit"), std::string::npos) << rows[2][msg];
+  EXPECT_EQ(rows[4][st], "collapse") << rows[4][msg];
+  EXPECT_FALSE(rows[4][cap].empty());
+  const auto j = nlohmann::json::parse(test::read(out / "sweep.json"));
+  EXPECT_EQ(j["failed"], 3);
+  EXPECT_TRUE(j["complete"].get<bool>());
+  EXPECT_NE(test::read(out / "report.md").find("stability limit"), std::string::npos);
+  // Bad input is exit code 2 with one line naming the file and the field.
+  test::write(d.path / "bad.json", spec(R"("vary": {"dem.friction_angle": {"from": 1}})"));
+  EXPECT_EQ(test::run(kExe + " sweep " + (d.path / "bad.json").string() + " --out " + out.string() + " 2>" + err.string()), 2);
+  const std::string e = test::read(err);
+  EXPECT_NE(e.find((d.path / "bad.json").string()), std::string::npos) << e;
+  EXPECT_NE(e.find("vary 'dem.friction_angle'"), std::string::npos) << e;
+  EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 1) << e;
+}
+
+TEST(SweepCommand, AKilledSweepResumesWithTheMissingRunsOnly) {
+  test::Scratch d("resume");
+  // One run at a time, each slowed down (seconds of model time per degree of tilt) so the sweep
+  // can be caught half way; the sanitized build is slow enough as it is.
+#ifdef __SANITIZE_ADDRESS__
+  const std::string move_time = "1.0";
+#else
+  const std::string move_time = "3.0";
+#endif
+  test::write(d.path / "s.json", spec(R"("vary": {"dem.friction_angle": {"from": 12.5, "to": 27.5, "step": 3}},
+      "set": {"dem.move_time": )" + move_time + "}"));
+  const std::string out = (d.path / "out").string(), csv = out + "/sweep.csv";
+  const std::string spec_path = (d.path / "s.json").string();
+  const std::vector<std::string> args = {kExe, "sweep", spec_path, "--out", out, "--jobs", "1", "--quiet"};
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, kExe.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  // Kill it (SIGKILL: no chance to tidy up) once the PRD row and two DEM rows are in.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (data_lines(test::read(csv)).size() < 3 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep finished before it could be killed: make its runs slower";
+  const std::vector<std::string> before = data_lines(test::read(csv));
+  ASSERT_GE(before.size(), 3u);
+  ASSERT_LT(before.size(), 7u);
+  std::set<int> had;
+  for (const std::string& l : before) had.insert(std::stoi(l));
+
+  // Resume: only the runs that have no row.
+  const std::string err = (d.path / "err.txt").string();
+  ASSERT_EQ(test::run(kExe + " sweep " + spec_path + " --out " + out + " --jobs 1 2>" + err), 0) << test::read(err);
+  const std::string progress = test::read(err);
+  std::set<int> missing;
+  for (int i = 0; i < 7; ++i)
+    if (!had.count(i)) missing.insert(i);
+  EXPECT_EQ(runs_done(progress), missing) << progress;
+  EXPECT_NE(progress.find(std::to_string(had.size()) + " in " + csv + " already, " + std::to_string(missing.size()) + " to run"),
+            std::string::npos)
+      << progress;
+  // The rows from before the kill are kept as they were, run times included (a rerun would
+  // have measured another time).
+  const std::string final_csv = test::read(csv);
+  const std::vector<std::string> after = data_lines(final_csv);
+  ASSERT_EQ(after.size(), 7u);  // 1 PRD run, 6 DEM runs
+  for (const std::string& l : before) EXPECT_EQ(after.at(std::stoi(l)), l);
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(std::stoi(after[i]), i);  // sorted by run
+
+  // A finished sweep run again does nothing and leaves the table as it was.
+  ASSERT_EQ(test::run(kExe + " sweep " + spec_path + " --out " + out + " 2>" + err), 0) << test::read(err);
+  EXPECT_NE(test::read(err).find(", 0 to run"), std::string::npos) << test::read(err);
+  EXPECT_EQ(test::read(csv), final_csv);
+}
+
+TEST(SweepCommand, RefusesToResumeAnotherSweepUnlessRestarted) {
+  test::Scratch d("restart");
+  const std::string out = (d.path / "out").string(), err = (d.path / "err.txt").string();
+  test::write(d.path / "a.json", spec(R"("methods": ["prd"], "vary": {"motion.step": [0.0174532925199433, 0.0349065850398866]})"));
+  test::write(d.path / "b.json", spec(R"("methods": ["prd"], "vary": {"motion.step": [0.0174532925199433, 0.0349065850398866]},
+      "set": {"prd.contact_tolerance": 2e-5})"));
+  ASSERT_EQ(test::run(kExe + " sweep " + (d.path / "a.json").string() + " --out " + out + " 2>" + err), 0) << test::read(err);
+  const std::string first = test::read(out + "/sweep.csv");
+  EXPECT_EQ(test::run(kExe + " sweep " + (d.path / "b.json").string() + " --out " + out + " 2>" + err), 2);
+  const std::string e = test::read(err);
+  EXPECT_NE(e.find("--restart"), std::string::npos) << e;
+  EXPECT_NE(e.find(out + "/sweep.csv"), std::string::npos) << e;
+  EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 1) << e;
+  EXPECT_EQ(test::read(out + "/sweep.csv"), first) << "a refused sweep leaves the table alone";
+  ASSERT_EQ(test::run(kExe + " sweep " + (d.path / "b.json").string() + " --out " + out + " --restart 2>" + err), 0) << test::read(err);
+  EXPECT_EQ(runs_done(test::read(err)), (std::set<int>{0, 1}));
+}
+
+// mpirun as the tests need it: as root (CI runs as root), more ranks than cores allowed, and
+// every byte on this machine (shared memory between ranks, no cross-memory attach, which
+// containers forbid; loopback for the launcher).
+//
+// In the sanitized build, Open MPI's runtime keeps memory to the end of the process that
+// LeakSanitizer reports as leaks (libmpi, libopen-rte, libopen-pal, its libevent and its
+// components, mca_*.so): those are suppressed, for the ranks only. Full stack unwinding and
+// components kept loaded are what let the suppressions see Open MPI's frames; any leak without
+// one of them in its stack is still reported.
+std::string mpirun(int ranks, const fs::path& scratch) {
+  const fs::path supp = scratch / "openmpi-lsan.supp";
+  test::write(supp, "leak:libmpi.so\nleak:libopen-rte.so\nleak:libopen-pal.so\nleak:libevent_core\nleak:mca_\n");
+  const char* asan = std::getenv("ASAN_OPTIONS");
+  return "ASAN_OPTIONS='" + std::string(asan ? asan : "") + ":fast_unwind_on_malloc=0' LSAN_OPTIONS='suppressions=" + supp.string() +
+         "' mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(ranks) +
+         " --mca btl self,vader --mca btl_vader_single_copy_mechanism none --mca oob_tcp_if_include lo"
+         " --mca mca_base_component_disable_dlclose 1 ";
+}
+
+TEST(SweepCommand, OneAndTwoMpiRanksGiveTheSameTable) {
+  if (test::run("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun is not on PATH (scripts/install-deps.sh installs it)";
+  test::Scratch d("mpi");
+  const std::string s = (d.path / "s.json").string();
+  test::write(s, spec(R"("vary": {"motion.step": [0.0174532925199433, 0.0349065850398866], "dem.friction_angle": [20.5, 30.5]})"));
+  std::map<std::string, std::string> tables;
+  for (const auto& [name, launcher] : std::map<std::string, std::string>{{"local", ""}, {"np1", mpirun(1, d.path)}, {"np2", mpirun(2, d.path)}}) {
+    const std::string out = (d.path / name).string(), err = (d.path / (name + ".err")).string();
+    ASSERT_EQ(test::run(launcher + kExe + " sweep " + s + " --out " + out + " </dev/null 2>" + err + " >/dev/null"), 0)
+        << name << ": " << test::read(err);
+    tables[name] = test::read(out + "/sweep.csv");
+    if (name == "np2") {
+      EXPECT_NE(test::read(err).find("on 2 MPI ranks"), std::string::npos) << test::read(err);
+    }
+  }
+  // Every column but the run time, which is measured and so differs from one run to the next.
+  const auto without_time = [](const std::string& csv) {
+    auto rows = test::csv_rows(csv);
+    const size_t tc = test::column(rows.at(0), "time_s");
+    for (auto& r : rows) r.at(tc) = "";
+    return rows;
+  };
+  const auto local = without_time(tables["local"]);
+  EXPECT_EQ(local.size(), 7u);  // header, 2 PRD runs, 4 DEM runs
+  EXPECT_EQ(without_time(tables["np1"]), local);
+  EXPECT_EQ(without_time(tables["np2"]), local);
+}
+
+}  // namespace
+}  // namespace masonry

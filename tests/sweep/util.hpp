@@ -1,0 +1,116 @@
+// Helpers of the sweep tests: scratch directories, files, the tilting block's closed form, and
+// running the masonry executable.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "case.hpp"
+#include "sweep.hpp"
+
+namespace masonry::test {
+
+namespace fs = std::filesystem;
+
+inline std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline void write(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+// A scratch directory per test (and process: ctest runs tests side by side), removed afterwards.
+struct Scratch {
+  fs::path path;
+  explicit Scratch(const std::string& name) {
+    path = fs::temp_directory_path() / ("masonry-sweep-test-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~Scratch() { fs::remove_all(path); }
+};
+
+// Runs a shell command; its exit code (-1 when it did not exit).
+inline int run(const std::string& cmd) {
+  const int rc = std::system(cmd.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+inline const std::string kTiltCase = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json";
+
+// The tilting block's closed form, from the case file's own geometry: a block b wide and h high
+// slides when the tilt reaches phi if tan(phi) < b/h and topples at atan(b/h) otherwise.
+struct TiltBlock {
+  double b = 0, h = 0;     // m
+  double rate = 0;         // rad of tilt per m of d (the slab's rotation rate)
+  double increment = 0;    // rad of tilt per step
+  double topple() const { return std::atan(b / h); }
+  // The collapse tilt for friction angle phi (rad): the smaller of phi and the toppling angle.
+  double collapse(double phi) const { return std::tan(phi) < b / h ? phi : topple(); }
+};
+
+inline TiltBlock tilt_block() {
+  const Case c = load_case(kTiltCase);
+  TiltBlock t;
+  const Block& blk = c.blocks.at(c.block_index("block"));
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+  for (const Vec2& v : blk.vertices) {
+    x0 = std::min(x0, v.x()), x1 = std::max(x1, v.x());
+    y0 = std::min(y0, v.y()), y1 = std::max(y1, v.y());
+  }
+  t.b = x1 - x0;
+  t.h = y1 - y0;
+  t.rate = c.motion.supports.at(0).rotation;
+  t.increment = c.motion.step * t.rate;
+  return t;
+}
+
+// The lines of a CSV text split into fields (no quoted commas in the columns the tests read).
+inline std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> f(1);
+    bool quoted = false;
+    for (char ch : line) {
+      if (ch == '"') quoted = !quoted;
+      else if (ch == ',' && !quoted) f.emplace_back();
+      else f.back() += ch;
+    }
+    rows.push_back(f);
+  }
+  return rows;
+}
+
+// Whether a text has the word "nan" (any case): the reports never show one.
+inline bool says_nan(const std::string& text) {
+  const auto letter = [](char ch) { return std::isalnum(static_cast<unsigned char>(ch)) != 0; };
+  for (size_t i = 0; i + 3 <= text.size(); ++i) {
+    const bool n = std::tolower(static_cast<unsigned char>(text[i])) == 'n' && std::tolower(static_cast<unsigned char>(text[i + 1])) == 'a' &&
+                   std::tolower(static_cast<unsigned char>(text[i + 2])) == 'n';
+    if (n && (i == 0 || !letter(text[i - 1])) && (i + 3 == text.size() || !letter(text[i + 3]))) return true;
+  }
+  return false;
+}
+
+inline size_t column(const std::vector<std::string>& header, const std::string& name) {
+  for (size_t k = 0; k < header.size(); ++k)
+    if (header[k] == name) return k;
+  return header.size();
+}
+
+}  // namespace masonry::test
