@@ -25,7 +25,10 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     const Case c = run_case(p, run);
-    const RunResult r = run.method == "prd" ? prd_run(c, PrdSettings::from_case(c)) : dem_run(c, DemSettings::from_case(c));
+    // PRD runs carry the sliding check, so the report can set its prediction beside the DEM.
+    PrdSettings ps = PrdSettings::from_case(c);
+    ps.sliding_check = true;
+    const RunResult r = run.method == "prd" ? prd_run(c, ps) : dem_run(c, DemSettings::from_case(c));
     row.capacity = r.capacity;
     row.time_s = r.timing.total_s;
     row.message = r.message;
