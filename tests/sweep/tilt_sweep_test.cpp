@@ -40,6 +40,10 @@ TEST(TiltSweep, SlidesBelowAtanBOverHAndTopplesAbove) {
   const double prd_tilt = t[0]->capacity * blk.rate;
   EXPECT_LE(prd_tilt, blk.topple());
   EXPECT_GT(prd_tilt, blk.topple() - blk.increment);
+  // Its sliding check: a block at rest on a slope theta needs tan(phi) >= tan(theta), so over
+  // the stable steps the friction angle it needs is the last stable tilt.
+  ASSERT_TRUE(t[0]->required_friction_angle);
+  EXPECT_NEAR(*t[0]->required_friction_angle * kDeg, prd_tilt, 1e-9);
 
   // DEM: each run within one increment below min(phi, atan(b/h)) (sliding or toppling).
   int sliding = 0, toppling = 0;
@@ -78,6 +82,7 @@ TEST(TiltSweep, SlidesBelowAtanBOverHAndTopplesAbove) {
   EXPECT_LT(boundary * kDeg, blk.topple());
   EXPECT_GT(boundary * kDeg, blk.topple() - step * kDeg);
   EXPECT_NEAR(curve["prd_capacity"].get<double>(), t[0]->capacity, 1e-15);
+  EXPECT_NEAR(curve["prd_required_friction_angle"].get<double>() * kDeg, prd_tilt, 1e-9);
 
   // The table has a row per run, the report its figure, and no report says NaN.
   const auto rows = test::csv_rows(test::read(d.path / "out" / "sweep.csv"));
