@@ -494,6 +494,7 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
       r.timing.total_s = t.contains("total_s") ? dbl(t["total_s"], "timing.total_s") : 0.0;
       r.timing.lp_s = t.contains("lp_s") ? dbl(t["lp_s"], "timing.lp_s") : 0.0;
       r.timing.lp_solves = t.value("lp_solves", 0LL);
+      r.timing.basis_evaluations = t.value("basis_evaluations", 0LL);
       r.timing.cycles = t.value("cycles", 0LL);
     }
     const ojson& blocks = j.at("blocks");

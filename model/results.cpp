@@ -35,6 +35,7 @@ ojson to_json(const RunResult& r, const Case& c) {
   if (r.method == "prd") {
     t["lp_s"] = num(r.timing.lp_s);
     t["lp_solves"] = r.timing.lp_solves;
+    t["basis_evaluations"] = r.timing.basis_evaluations;
   } else {
     t["cycles"] = r.timing.cycles;
   }

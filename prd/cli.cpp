@@ -52,7 +52,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     sub->add_option("--event-tolerance", *event_tol,
                     "With --adaptive: how closely events are located, m (default 1e-4 of the scene size)")
         ->check(CLI::PositiveNumber);
-    sub->add_option("--max-step", *max_step, "With --adaptive: the longest step, m (default 16 x --step)")
+    sub->add_option("--max-step", *max_step, "With --adaptive: the longest step, m (default: the smaller of 16 x --step and 0.4 sqrt(event tolerance x scene size), 1/250 of the scene at the default tolerance)")
         ->check(CLI::PositiveNumber);
     sub->add_flag("--sliding", *sliding,
                   "Sliding check on every step: friction demand of the joint forces and the least friction angle "

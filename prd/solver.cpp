@@ -81,6 +81,7 @@ struct Model {
   std::unique_ptr<glp_prob, GlpDeleter> lp;
   double lp_s = 0;
   long long lp_solves = 0;
+  long long basis_evaluations = 0;
 
   Vec2 pos(int b, const Vec2& X) const { return cen[b] + rot(angle[b]) * (X - c0[b]); }
   Vec2 normal(const Endpoint& e) const { return rot(angle[joints[e.joint].i]) * joints[e.joint].normal; }
@@ -166,7 +167,10 @@ std::vector<double> generalised_loads(const Model& m) {
 
 // Rewrites every row, bound and objective coefficient for the current configuration and a
 // support step h (0 for the analysis as it stands). The problem's structure never changes.
-void update_lp(Model& m, double h, double scale) {
+// Closed corners take back their residual gap over h; open corners must not penetrate over
+// h_open (<= h; 0: h), so that an event-driven run can plan a long step without the bound of
+// a corner that closes part way changing the mechanism: the step is cut short there instead.
+void update_lp(Model& m, double h, double scale, double h_open = 0) {
   // GLPK aborts the process on a non-finite or zero scale; this is the one place to stop it.
   if (!(scale > 0) || !std::isfinite(scale) || !(h >= 0) || !std::isfinite(h))
     throw std::logic_error(std::string("prd: invalid step for the LP (m): ").append(std::to_string(h)));
@@ -207,7 +211,8 @@ void update_lp(Model& m, double h, double scale) {
       const int row = 2 * static_cast<int>(e) + 1 + r;
       glp_set_mat_row(lp, row, cnt, ind, val);
       if (r == 0) {
-        const double gap = (pj - pi).dot(n);
+        double gap = (pj - pi).dot(n);
+        if (!ep.closed && h_open > 0 && h_open < h) gap *= h / h_open;
         glp_set_row_bnds(lp, row, GLP_LO, (-gap - known) / scale, 0);
       } else if (m.sliding_row(e)) {
         // The tangential offset left by earlier finite updates is taken back here, so that
@@ -547,17 +552,19 @@ void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
   rec.extra["lp_dual"] = dual * scale;
 }
 
-// Per endpoint, from the LP just solved with step h: the gap on the current configuration and
-// its rate of change along the mechanism (m per m of d).
-void gaps_and_rates(const Model& m, double h, std::vector<double>& gap, std::vector<double>& rate) {
-  const std::vector<double> after = slacks(m, h);
+// Per endpoint, from the LP just solved with step h (open corners held over h_open, see
+// update_lp): the gap on the current configuration and its rate of change along the mechanism
+// (m per m of d).
+void gaps_and_rates(const Model& m, double h, double h_open, std::vector<double>& gap, std::vector<double>& rate) {
+  const std::vector<double> slack = slacks(m, h);
   gap.resize(m.ends.size());
   rate.resize(m.ends.size());
   for (size_t e = 0; e < m.ends.size(); ++e) {
     const Endpoint& ep = m.ends[e];
     const Interface& jt = m.joints[ep.joint];
     gap[e] = (m.pos(jt.j, ep.X) - m.pos(jt.i, ep.X)).dot(m.normal(ep));
-    rate[e] = (after[e] - gap[e]) / h;
+    const double held = !ep.closed && h_open < h ? gap[e] * h / h_open : gap[e];  // the row's gap
+    rate[e] = (slack[e] - held) / h;
   }
 }
 
@@ -575,28 +582,103 @@ std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, c
   return out;
 }
 
-// The finite update by h along the mechanism U (column values per unit of d): every free
-// block rotates about its own pole, supports move as prescribed.
-void advance(Model& m, const std::vector<double>& U, double h) {
-  const Case& c = *m.c;
-  for (size_t b = 0; b < c.blocks.size(); ++b) {
-    if (m.col[b] > 0) {
-      const Vec2 u(U[m.col[b]] * h, U[m.col[b] + 1] * h);
-      const double th = U[m.col[b] + 2] * h / m.radius[b];
-      m.cen[b] += pole_displacement(u, th);
-      m.angle[b] += th;
-    } else if (m.motion_of[b] >= 0) {
-      const Increment inc = support_increment(m, static_cast<int>(b), h);
-      m.cen[b] = inc.at + rot(inc.th) * (m.cen[b] - inc.at) + inc.u;
-      m.angle[b] += inc.th;
-    }
+// A way forward from the current configuration: the mechanism U (column values per unit of
+// d) and, when known, its rate of change dU along the way (per m of d). A move h follows
+// U + h/2 dU, which is second-order accurate in h where the first-order update along U alone
+// drifts off the path of ever smaller steps.
+struct Path {
+  const std::vector<double>& U;
+  const std::vector<double>& dU;
+  double at(int j, double h) const { return dU.empty() ? U[j] : U[j] + 0.5 * h * dU[j]; }
+};
+
+// Where block b is after a finite update by h along the path: a free block rotates about its
+// own pole, a support moves as prescribed.
+void pose_after(const Model& m, const Path& path, size_t b, double h, Vec2& cen, double& angle) {
+  cen = m.cen[b];
+  angle = m.angle[b];
+  if (m.col[b] > 0) {
+    const Vec2 u(path.at(m.col[b], h) * h, path.at(m.col[b] + 1, h) * h);
+    const double th = path.at(m.col[b] + 2, h) * h / m.radius[b];
+    cen += pole_displacement(u, th);
+    angle += th;
+  } else if (m.motion_of[b] >= 0) {
+    const Increment inc = support_increment(m, static_cast<int>(b), h);
+    cen = inc.at + rot(inc.th) * (cen - inc.at) + inc.u;
+    angle += inc.th;
   }
+}
+
+void advance(Model& m, const Path& path, double h) {
+  for (size_t b = 0; b < m.cen.size(); ++b) {
+    Vec2 cen;
+    double angle;
+    pose_after(m, path, b, h, cen, angle);
+    m.cen[b] = cen;
+    m.angle[b] = angle;
+  }
+}
+
+// The gap of corner e after a finite update by h along the path, exactly (not to first order).
+double gap_after(const Model& m, const Path& U, size_t e, double h) {
+  const Endpoint& ep = m.ends[e];
+  const Interface& jt = m.joints[ep.joint];
+  Vec2 ci, cj;
+  double ai, aj;
+  pose_after(m, U, jt.i, h, ci, ai);
+  pose_after(m, U, jt.j, h, cj, aj);
+  const Vec2 pi = ci + rot(ai) * (ep.X - m.c0[jt.i]), pj = cj + rot(aj) * (ep.X - m.c0[jt.j]);
+  return (pj - pi).dot(rot(ai) * jt.normal);
+}
+
+// The first open corner that closes within a move of `limit` along the path, and the move
+// that brings its gap to the contact tolerance (as a fixed step closes it), found on the exact finite update (a long
+// step's rotations, and the mechanism's change along it, make the first-order gap rate miss
+// by more than the tolerance). Each open corner's gap is looked at where its rate closes it
+// and at four points along the move, so that one closing and opening again within the move is
+// seen too.
+struct Closing {
+  double at = std::numeric_limits<double>::infinity();
+  size_t corner = 0;
+  double within = 0;  // m of d: the bracket left by the search
+};
+
+Closing first_closing(const Model& m, const Path& U, const std::vector<double>& gap,
+                      const std::vector<double>& rate, double limit) {
+  Closing c;
+  const double target = m.tol;
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    if (m.ends[e].closed) continue;
+    const double lim = std::min(limit, c.at);
+    double hi = std::numeric_limits<double>::infinity();
+    if (rate[e] < 0) {
+      const double lin = (gap[e] - target) / -rate[e];
+      if (lin < lim && gap_after(m, U, e, lin) <= target) hi = lin;
+    }
+    for (int k = 1; k <= 4 && !std::isfinite(hi); ++k)
+      if (gap_after(m, U, e, lim * k / 4) <= target) hi = lim * k / 4;
+    if (!std::isfinite(hi)) continue;
+    double lo = 0;
+    // Bisection to a bracket whose gaps differ by a tenth of the target (or whose length is
+    // round-off), so that the end reached is closed but not penetrating.
+    for (int it = 0; it < 100 && hi - lo > 1e-12 * limit &&
+                     gap_after(m, U, e, lo) - gap_after(m, U, e, hi) > 0.1 * target; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (gap_after(m, U, e, mid) > target ? lo : hi) = mid;
+    }
+    c = {hi, e, hi - lo};
+  }
+  return c;
 }
 
 std::vector<double> column_values(const Model& m) {
   std::vector<double> U(m.ncols + 1, 0.0);
   for (int j = 1; j <= m.ncols; ++j) U[j] = glp_get_col_prim(m.lp.get(), j);
   return U;
+}
+
+void set_closed(Model& m, const std::vector<char>& closed) {
+  for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = closed[e];
 }
 
 // A configuration the run accepted, with what it takes to step from it again.
@@ -607,35 +689,163 @@ struct Accepted {
   std::vector<double> angle;
   std::vector<char> closed;        // the contact state its LP used
   std::vector<double> U, gap, rate;  // its LP's mechanism, gaps and their rates
+  std::vector<double> dU;            // the mechanism's change along d (empty: not known)
   double h_lp = 0;                   // the step its LP was solved with
   std::vector<double> fn;            // its LP's normal force at each corner, N
-  bool event = false;                // its LP changed the mechanism
+  bool same = true;                  // its LP kept the contact state (no corner opens or closes)
+  std::vector<int> row_stat, col_stat;  // its LP's final basis
+  std::vector<double> slack;            // its LP's no-penetration rows' slacks (LP units)
 };
 
-// Where the next event is expected along the current mechanism, as distances in d from the
-// configuration a: an open corner closes where its gap, shrinking at its rate, reaches the
-// tolerance; a closed corner opens where its normal force, extrapolated from the previous
-// configuration b on the same mechanism (same basis, so the force varies smoothly), reaches 0.
-struct Prediction {
-  double to_open = std::numeric_limits<double>::infinity();
-  double to_close = std::numeric_limits<double>::infinity();
-};
-
-Prediction predict_event(const Model& m, const Accepted& a, const Accepted* b) {
-  Prediction p;
+void save_basis(const Model& m, Accepted& a) {
+  glp_prob* lp = m.lp.get();
+  a.row_stat.resize(glp_get_num_rows(lp) + 1);
+  a.col_stat.resize(m.ncols + 1);
+  for (size_t i = 1; i < a.row_stat.size(); ++i) a.row_stat[i] = glp_get_row_stat(lp, static_cast<int>(i));
+  for (int j = 1; j <= m.ncols; ++j) a.col_stat[j] = glp_get_col_stat(lp, j);
+  a.slack.resize(m.ends.size());
   for (size_t e = 0; e < m.ends.size(); ++e) {
-    if (!a.closed[e]) {
-      if (a.rate[e] < 0) p.to_close = std::min(p.to_close, std::max(a.gap[e] - m.tol, 0.0) / -a.rate[e]);
-    } else if (b && b->closed[e] && a.d > b->d) {
-      const double slope = (a.fn[e] - b->fn[e]) / (a.d - b->d);
-      if (a.fn[e] > 0 && slope < 0) p.to_open = std::min(p.to_open, a.fn[e] / -slope);
-    }
+    const int row = 2 * static_cast<int>(e) + 1;
+    a.slack[e] = glp_get_row_prim(lp, row) - glp_get_row_lb(lp, row);
   }
-  return p;
 }
 
-void set_closed(Model& m, const std::vector<char>& closed) {
-  for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = closed[e];
+// The LP of the current configuration and contact state for a step h (open corners held over
+// h_open) with a's basis, evaluated without a simplex iteration (glp_warm_up's code).
+int evaluate_basis(Model& m, const Accepted& a, double h, double h_open) {
+  glp_prob* lp = m.lp.get();
+  update_lp(m, h, h, h_open);
+  for (size_t i = 1; i < a.row_stat.size(); ++i) glp_set_row_stat(lp, static_cast<int>(i), a.row_stat[i]);
+  for (int j = 1; j <= m.ncols; ++j) glp_set_col_stat(lp, j, a.col_stat[j]);
+  const auto t0 = Clock::now();
+  const int rc = glp_warm_up(lp);
+  m.lp_s += seconds_since(t0);
+  ++m.basis_evaluations;
+  return rc;
+}
+
+// Where, between configuration a and the current one (a distance `span` further on), the
+// basis of a's LP stopped being the optimum: that basis (and contact state) is evaluated here
+// without a simplex iteration, and where a closed corner's normal force or an open corner's
+// slack has turned negative, it is interpolated linearly to its zero. Infinite when nothing
+// has; empty when GLPK cannot evaluate the basis. A corner that closed on the way (open in a,
+// closed here) is not counted: its closing was located where it happened. Leaves the contact
+// state as a's.
+std::optional<double> basis_crossing(Model& m, const Accepted& a, double span, double tol_ev) {
+  glp_prob* lp = m.lp.get();
+  std::vector<char> closed_since(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e) closed_since[e] = !a.closed[e] && m.ends[e].closed;
+  set_closed(m, a.closed);
+  if (evaluate_basis(m, a, a.h_lp, std::min(a.h_lp, tol_ev)) != 0) return std::nullopt;
+  double at = std::numeric_limits<double>::infinity();
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    if (closed_since[e]) continue;
+    const int row = 2 * static_cast<int>(e) + 1;
+    const double was = a.closed[e] ? a.fn[e] : a.slack[e];
+    const double now = a.closed[e] ? glp_get_row_dual(lp, row) : glp_get_row_prim(lp, row) - glp_get_row_lb(lp, row);
+    if (was > 0 && now < 0) at = std::min(at, span * was / (was - now));
+  }
+  return at;
+}
+
+// The first x > 0 where f + b x + k x^2 = 0 (f > 0), infinite if none.
+double first_zero(double f, double b, double k) {
+  double x = std::numeric_limits<double>::infinity();
+  if (std::abs(k) * f < 1e-6 * b * b) {
+    if (b < 0) x = f / -b;
+  } else {
+    const double disc = b * b - 4 * k * f;
+    // The smaller positive root (k < 0 has one; k > 0 has two or none).
+    if (disc >= 0 && (k < 0 || b < 0)) x = (-b - std::sqrt(disc)) / (2 * k);
+  }
+  return x > 0 ? x : std::numeric_limits<double>::infinity();
+}
+
+// A planned move from configuration a, where the next opening is expected from it, and the
+// corner expected to open (-1: none).
+struct Move {
+  double h = 0;
+  double to_open = std::numeric_limits<double>::infinity();
+  long corner = -1;
+  void consider(double x, size_t e) {
+    if (x < to_open) to_open = x, corner = static_cast<long>(e);
+  }
+};
+
+// Where a closed corner of configuration a is expected to open, as a distance x in d: where
+// its normal force f + slope x + curve x^2 reaches 0. (For a fixed basis the duals vary
+// smoothly with the geometry; the basis changes where one of them would turn negative.)
+// Corners `ignored` are left out (see prd_run).
+Move predict_opening(const Accepted& a, const std::vector<double>& slope, const std::vector<double>& curve,
+                     const std::vector<char>& ignored) {
+  Move mv;
+  for (size_t e = 0; e < slope.size(); ++e)
+    if (a.closed[e] && a.fn[e] > 0 && !ignored[e])
+      mv.consider(first_zero(a.fn[e], slope[e], curve.empty() ? 0.0 : curve[e]), e);
+  return mv;
+}
+
+// The move x from a along its LP's basis, checked where it would end: the basis is evaluated
+// there (no simplex iteration). Where a closed corner's force has turned negative, the move is
+// cut to land short of where it reaches 0, and checked again. The zero is that of the
+// quadratic through a's force, its trend `slope` when known, and the value there; of the chord
+// otherwise. `guess` is the prediction the move came from. A move longer than `short_move`
+// follows the mean of the mechanisms at both ends (a.dU: Heun's second-order step); a shorter
+// one needs no check. (Closings are left to first_closing, on the move's exact path.)
+template <class Land>
+Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const Move& guess,
+               const std::vector<double>& slope, const std::vector<char>& ignored, double short_move,
+               const Land& land) {
+  Move mv = guess;
+  mv.h = x;
+  a.dU.clear();
+  const std::vector<Vec2> cen = m.cen;
+  const std::vector<double> angle = m.angle;
+  std::vector<double> dU;
+  // Each check: the basis where the move along U alone ends, then, with the mechanism's rate
+  // of change that gives, where the move along the mean ends (the end actually reached).
+  for (int it = 0; it < 6 && x > short_move; ++it) {
+    advance(m, Path{a.U, dU}, x);
+    const int rc = evaluate_basis(m, a, h, h_open);
+    const std::vector<Vec2> there = m.cen;
+    m.cen = cen;
+    m.angle = angle;
+    if (rc != 0) break;
+    Move at;
+    at.h = x;
+    for (size_t e = 0; e < m.ends.size(); ++e) {
+      if (ignored[e]) continue;
+      const int row = 2 * static_cast<int>(e) + 1;
+      if (a.closed[e] && a.fn[e] > 0) {
+        const double f0 = a.fn[e], f1 = glp_get_row_dual(m.lp.get(), row);
+        at.consider(slope.empty() ? first_zero(f0, (f1 - f0) / x, 0.0)
+                                  : first_zero(f0, slope[e], (f1 - f0 - slope[e] * x) / (x * x)), e);
+      }
+    }
+    mv = at;
+    if (at.to_open < x) {
+      x = mv.h = land(at.to_open);
+      dU.clear();
+    } else if (dU.empty()) {
+      // The change of each block's motion, with the velocity there taken at the centroid's
+      // place here: a block turning about a fixed pole has no change to follow (its centroid
+      // velocity turns with it), and the move's finite rotation about the pole stays exact.
+      dU.assign(m.ncols + 1, 0.0);
+      for (size_t b = 0; b < m.col.size(); ++b) {
+        const int k = m.col[b];
+        if (k < 0) continue;
+        const double th = glp_get_col_prim(m.lp.get(), k + 2) / m.radius[b];
+        const Vec2 v = Vec2(glp_get_col_prim(m.lp.get(), k), glp_get_col_prim(m.lp.get(), k + 1)) + th * perp(cen[b] - there[b]);
+        dU[k] = (v.x() - a.U[k]) / x;
+        dU[k + 1] = (v.y() - a.U[k + 1]) / x;
+        dU[k + 2] = (glp_get_col_prim(m.lp.get(), k + 2) - a.U[k + 2]) / x;
+      }
+    } else {
+      a.dU = dU;
+      break;
+    }
+  }
+  return mv;
 }
 
 StepRecord configuration_record(const Model& m, int index, double d) {
@@ -719,7 +929,12 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   // and no event is bracketed more finely than one step.
   const double h_ref = s.step;
   const double tol_ev = !s.adaptive ? h_ref : s.event_tolerance > 0 ? s.event_tolerance : 1e-4 * scene_size(c);
-  const double h_max = !s.adaptive ? h_ref : std::max(s.max_step > 0 ? s.max_step : 16 * h_ref, tol_ev);
+  // The longest move. A move's path error (second order, see Path) grows as the square of its
+  // length against the scene's, so the default keeps it within the event tolerance:
+  // 0.4 sqrt(tolerance x scene size), 1/250 of the scene at the default tolerance.
+  const double h_max =
+      !s.adaptive ? h_ref
+                  : std::max(s.max_step > 0 ? s.max_step : std::min(16 * h_ref, 0.4 * std::sqrt(tol_ev * scene_size(c))), tol_ev);
   const double d_end = s.max_steps * h_ref;
   r.settings = {{"step", s.step}, {"max_steps", s.max_steps}, {"contact_tolerance", s.contact_tolerance}};
   if (s.adaptive) {
@@ -734,6 +949,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   auto sync_timing = [&] {
     r.timing.lp_s = m.lp_s;
     r.timing.lp_solves = m.lp_solves;
+    r.timing.basis_evaluations = m.basis_evaluations;
     r.timing.total_s = seconds_since(t_start) - io_s;
   };
   auto emit = [&] {
@@ -749,30 +965,57 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   // makes d_k stable. An unbounded LP on d_k means d_k admits a collapse mechanism: the
   // capacity is then d_{k-1}, the last configuration with an admissible force state.
   //
-  // Events. A corner that opens, or the collapse, is a property of the configuration the LP is
-  // solved on: seen on d_k, it happened in (d_{k-1}, d_k]. If that step was longer than the
-  // tolerance, the run goes back to d_{k-1} and steps half the bracket along d_{k-1}'s
-  // mechanism (no LP needed for the move), and so on until the bracket is within tolerance.
-  // A corner that closes does so during the step being taken: the step is halved until it is
-  // within tolerance.
+  // Events (adaptive runs; a fixed run is the same loop with every move one step long).
+  //  - Opening or collapse: a property of the configuration the LP is solved on: seen on d_k,
+  //    it happened in (d_{k-1}, d_k]. Moves are planned so that this bracket is within the
+  //    tolerance: the forces' trend on the current basis (from the previous configurations on
+  //    it, or from the basis evaluated a little further on) predicts where one of them reaches
+  //    0, the basis evaluated there corrects the prediction, and the run stops half a tolerance
+  //    short of it, then steps half a tolerance past. A longer bracket is closed by going back
+  //    to d_{k-1}, to where its basis's forces, interpolated to d_k, reach 0, or else half way
+  //    (no LP is needed for the move back), until it is within the tolerance.
+  //  - Closing: found on the move itself: the move stops where the first open corner's gap
+  //    reaches the contact tolerance. Only a corner that the LP already holds at its bound
+  //    (closing within the tolerance) closes at the end of a move.
+  //  - An opening seen where a move stopped at a closing, while the previous basis still holds
+  //    there, is the closing's consequence and is located with it.
+  //  - A corner whose force reached 0 without the mechanism changing (a statically
+  //    indeterminate part's duals are one admissible force state of many) is left out of the
+  //    predictions once the run has stepped past its predicted opening.
+  // Moves follow the mechanism and its rate of change (Path), so that long moves stay on the
+  // path of ever smaller fixed steps.
   Accepted cur;
   SlidingLp sliding;
-  std::optional<Accepted> prev;
+  std::optional<Accepted> prev, prev2;  // the last accepted configurations, newest first
   StepRecord rec = configuration_record(m, 0, 0.0);
-  double h_in = 0;                                          // the step that led to cur
+  double h_in = 0;                                          // the move that led to cur
   double seen = std::numeric_limits<double>::infinity();    // d where an event was seen, not yet located
-  double h_next = h_ref;
+  double h_plan = h_ref;                                    // the step the next LP is solved for
+  double arrived_closing = -1;  // the move to cur ended where a corner closed: located within this
+  long passing = -1;            // the corner the move to cur was to take past its predicted opening
+  std::vector<char> ignored(m.ends.size(), 0);
+  // A move stops half a tolerance short of a predicted opening, and the next one goes half a
+  // tolerance past it, so that it is bracketed within the tolerance without bisection.
+  const auto land = [&](double x) { return x > tol_ev ? x - tol_ev / 2 : std::min(x + tol_ev / 2, tol_ev); };
+  // Inside a bracket (an event seen at `seen`, not yet located), the move from d: to land by
+  // the estimated crossing while it lies ahead, else to halve the bracket; once the bracket
+  // is within the tolerance, to its end.
+  double crossing = std::numeric_limits<double>::infinity();
+  const auto toward_event = [&](double d) {
+    const double left = seen - d;
+    if (left <= tol_ev) return left;
+    const double x = crossing - d;
+    if (x > 0 && x < left) return std::min(land(x), left - tol_ev / 2);
+    return left / 2;
+  };
   std::vector<double> gap, rate;
   try {
     for (;;) {
-      double h = h_next;
-      if (s.adaptive) {
-        // Halve the open bracket, or close it once it is small; at its end, step on.
-        const double rem = seen - cur.d;
-        if (std::isfinite(seen) && rem > 1e-9 * h_ref) h = rem > tol_ev ? rem / 2 : rem;
-        if (d_end - cur.d > 1e-9 * h_ref) h = std::min(h, d_end - cur.d);
-      }
-      update_lp(m, h, h);
+      // The LP is solved for the step planned, with open corners held over the event tolerance
+      // only: a corner that closes later in the step cuts the move short where it closes (on
+      // the exact motion), so the LP's mechanism is the one of this configuration.
+      const double h = h_plan, h_open = std::min(h, tol_ev);
+      update_lp(m, h, h, h_open);
       const int st = m.ncols == 0 ? GLP_OPT : solve(m);
       if (st != GLP_OPT && st != GLP_UNBND) {
         r.stopped = "error";
@@ -781,28 +1024,51 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
         break;
       }
       std::vector<size_t> opened, closing;
-      std::vector<char> next;
       if (st == GLP_OPT) {
-        gaps_and_rates(m, h, gap, rate);
-        next = closed_after(m, gap, rate, h, h, h_ref);
+        gaps_and_rates(m, h, h_open, gap, rate);
+        const std::vector<char> next = closed_after(m, gap, rate, h, h_open, h_ref);
         for (size_t e = 0; e < m.ends.size(); ++e)
           if (m.ends[e].closed != next[e]) (next[e] ? closing : opened).push_back(e);
       }
-      if ((st == GLP_UNBND || !opened.empty()) && prev && h_in > tol_ev * (1 + 1e-9)) {
-        // Back to the last accepted configuration, half way to where the event was seen.
+      // An event seen at the end of a move longer than the tolerance is located by going back.
+      // Unless the move ended where a corner closed, and the previous mechanism held all the
+      // way (its basis is still the optimum here, that corner aside): then the closing set
+      // the event off, and it is located with the closing.
+      bool back = (st == GLP_UNBND || !opened.empty()) && prev && h_in > tol_ev * (1 + 1e-9);
+      if (back && s.adaptive) {
+        const Accepted& p = *prev;
+        Accepted here;
+        save_basis(m, here);
+        here.closed.resize(m.ends.size());
+        for (size_t e = 0; e < m.ends.size(); ++e) here.closed[e] = m.ends[e].closed;
+        const std::optional<double> x = basis_crossing(m, p, cur.d - p.d, tol_ev);
+        set_closed(m, here.closed);
+        crossing = x ? p.d + *x : std::numeric_limits<double>::infinity();
+        if (x && !std::isfinite(*x) && arrived_closing >= 0) {
+          back = false;
+          h_in = arrived_closing;
+          // basis_crossing left the previous basis in the LP: this configuration's back.
+          if (evaluate_basis(m, here, h, h_open) != 0) throw std::runtime_error("GLPK could not restore the step's basis");
+        }
+      }
+      if (back) {
+        // Back to the last accepted configuration, and from there to where the previous
+        // basis's forces, interpolated between there and here, reach 0 (half way when they
+        // do not tell).
         seen = cur.d;
         const Accepted& p = *prev;
         m.cen = p.cen;
         m.angle = p.angle;
         set_closed(m, p.closed);
-        const double rem = seen - p.d;
-        h_in = rem > tol_ev ? rem / 2 : rem;
+        h_in = toward_event(p.d);
         const std::vector<char> closed = closed_after(m, p.gap, p.rate, p.h_lp, h_in, h_ref);
-        advance(m, p.U, h_in);
+        advance(m, Path{p.U, p.dU}, h_in);
         set_closed(m, closed);
         cur.d = p.d + h_in;
         cur.index = p.index + 1;
         rec = configuration_record(m, cur.index, cur.d);
+        h_plan = toward_event(cur.d);
+        arrived_closing = -1;
         continue;
       }
       if (st == GLP_UNBND) {
@@ -816,28 +1082,26 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
         if (!prev) r.message = "unstable as it stands";
         break;
       }
-      if (!closing.empty() && h > tol_ev * (1 + 1e-9)) {
-        // A corner closes during the step: take a much shorter one from here. The closing
-        // comes first, so a bracket further on is dropped (it is found again if it holds).
-        // Its rate is hidden by the bound that stopped it; from the shorter step on, where it
-        // is still open, the prediction below lands on it.
-        h_next = std::max(tol_ev, h / 8);
-        seen = std::numeric_limits<double>::infinity();
-        continue;
-      }
 
-      // cur is accepted.
+      // cur is accepted. A corner the move was to take past its predicted opening that is still
+      // closed has a force that reached 0 without changing the mechanism (a statically
+      // indeterminate part's dual forces are one admissible state of many): it is left out of
+      // the predictions from here on, and should it open after all, the LP sees it.
+      if (passing >= 0 && m.ends[passing].closed && opened.empty() && !ignored[passing]) ignored[passing] = 1;
+      passing = -1;
       read_forces(m, rec);
       lp_check_fields(m, h, rec);
       if (s.sliding_check) sliding_check(m, sliding, rec);
       r.steps.push_back(rec);
       r.capacity = cur.d;
       r.stable_steps = cur.index;
+      // An event seen on the way here that did not recur at the same d (the way there
+      // differed) is over.
+      if (seen - cur.d <= 1e-9 * h_ref) seen = std::numeric_limits<double>::infinity();
       if (!opened.empty()) {
         r.extra["events"].push_back(event_json(m, "open", cur.d, h_in, opened));
         seen = std::numeric_limits<double>::infinity();
       }
-      if (!closing.empty()) r.extra["events"].push_back(event_json(m, "close", cur.d + h, h, closing));
       if (s.adaptive ? d_end - cur.d <= 1e-9 * h_ref : cur.index == s.max_steps) {
         r.stopped = "max_steps";
         break;
@@ -854,29 +1118,76 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
       for (size_t e = 0; e < m.ends.size(); ++e) cur.closed[e] = m.ends[e].closed;
       cur.fn.resize(m.ends.size());
       for (size_t e = 0; e < m.ends.size(); ++e) cur.fn[e] = glp_get_row_dual(m.lp.get(), 2 * static_cast<int>(e) + 1);
-      cur.event = !opened.empty() || !closing.empty();
+      cur.same = opened.empty() && closing.empty();
+      cur.dU.clear();
+      save_basis(m, cur);
       double h_take = h;
+      Closing shut;  // a closing the move is cut short at
       if (s.adaptive) {
-        // An LP that changed the mechanism already holds the new one, so its forces and the
-        // next configuration's lie on one mechanism unless the next LP changes it again.
-        const Prediction p = predict_event(m, cur, prev && !cur.event ? &*prev : nullptr);
-        // Land half a tolerance short of the predicted event, then half a tolerance past it,
-        // so that it is bracketed within the tolerance without bisection. A wrong prediction
-        // costs a step; the mechanism check above still finds every event.
-        const auto land = [&](double x) { return x > tol_ev ? x - tol_ev / 2 : std::min(x + tol_ev / 2, tol_ev); };
-        const double to_event = std::min(p.to_open, p.to_close);
-        if (!std::isfinite(seen)) h_take = std::min(h, land(to_event));
-        // Past an event (or landing just past a predicted one) a short step gives the new
-        // mechanism's force trend and finds the corners that close as the hinge moves; after
-        // that the step is as long as allowed, cut short by the prediction.
-        h_next = cur.event || to_event <= tol_ev ? std::min(h_max, 2 * tol_ev) : h_max;
-        // The next LP's step is what finds a closing: keep it short enough to locate it.
-        if (std::isfinite(p.to_close)) h_next = std::min(h_next, land(std::max(p.to_close - h_take, 0.0)));
+        if (std::isfinite(seen)) {
+          h_take = std::min(h, toward_event(cur.d));
+        } else if (closing.empty()) {
+          // The forces' trend, when the previous configurations had the same mechanism (their
+          // chord, with its curvature when there are three), gives a first guess of the move;
+          // plan_move checks it on the basis where it would end.
+          const auto on_same = [&](const std::optional<Accepted>& a, const Accepted& b) {
+            return a && a->same && b.same && a->closed == b.closed && b.d > a->d;
+          };
+          std::vector<double> slope, curve;
+          double x = h;
+          Move guess;
+          if (on_same(prev, cur)) {
+            slope.resize(m.ends.size());
+            for (size_t e = 0; e < m.ends.size(); ++e) slope[e] = (cur.fn[e] - prev->fn[e]) / (cur.d - prev->d);
+            if (on_same(prev2, *prev)) {
+              curve.resize(m.ends.size());
+              for (size_t e = 0; e < m.ends.size(); ++e) {
+                curve[e] = (slope[e] - (prev->fn[e] - prev2->fn[e]) / (prev->d - prev2->d)) / (cur.d - prev2->d);
+                slope[e] += curve[e] * (cur.d - prev->d);  // at cur
+              }
+            }
+            guess = predict_opening(cur, slope, curve, ignored);
+            x = std::min(x, land(guess.to_open));
+          }
+          if (d_end - cur.d > 1e-9 * h_ref) x = std::min(x, d_end - cur.d);
+          const Move mv = plan_move(m, cur, h, h_open, x, guess, slope, ignored, 2 * tol_ev, land);
+          h_take = mv.h;
+          if (mv.to_open <= h_take) passing = mv.corner;
+        }
+        if (d_end - cur.d > 1e-9 * h_ref) h_take = std::min(h_take, d_end - cur.d);
+        if (!closing.empty()) {
+          h_take = std::min(h_take, h_open);  // the LP holds the closing corner at the end of it
+        } else {
+          shut = first_closing(m, Path{cur.U, cur.dU}, gap, rate, h_take);
+          if (std::isfinite(shut.at)) h_take = shut.at;
+        }
+        // The next LP's step: inside a bracket, the next move in it; else as long as allowed,
+        // the predictions cutting the move short.
+        h_plan = h_max;
+        if (std::isfinite(seen) && seen - cur.d - h_take > 1e-9 * h_ref) h_plan = toward_event(cur.d + h_take);
       }
+      if (!(h_take > 0)) throw std::logic_error("prd: the step came to a stop at d = " + std::to_string(cur.d) + " m");
+      prev2 = std::move(prev);
       prev = cur;
-      advance(m, cur.U, h_take);
-      set_closed(m, closed_after(m, gap, rate, h, h_take, h_ref));
+      advance(m, Path{cur.U, cur.dU}, h_take);
+      std::vector<char> closed = closed_after(m, gap, rate, h, h_take, h_ref);
+      if (std::isfinite(shut.at)) closed[shut.corner] = 1;
+      if (!cur.dU.empty())  // off the first-order update, a corner's gap is what it is
+        for (size_t e = 0; e < m.ends.size(); ++e) {
+          const Interface& jt = m.joints[m.ends[e].joint];
+          if (!m.ends[e].closed && (m.pos(jt.j, m.ends[e].X) - m.pos(jt.i, m.ends[e].X)).dot(m.normal(m.ends[e])) <= m.tol)
+            closed[e] = 1;
+        }
+      std::vector<size_t> shut_now;
+      for (size_t e = 0; e < m.ends.size(); ++e)
+        if (closed[e] && !m.ends[e].closed) shut_now.push_back(e);
+      set_closed(m, closed);
+      if (!shut_now.empty()) {
+        const bool exact = std::isfinite(shut.at) && shut_now.size() == 1;
+        r.extra["events"].push_back(event_json(m, "close", cur.d + h_take, exact ? shut.within : h_take, shut_now));
+      }
       h_in = h_take;
+      arrived_closing = std::isfinite(shut.at) ? shut.within : -1;
       cur.index += 1;
       cur.d = s.adaptive ? prev->d + h_take : cur.index * h_ref;
       rec = configuration_record(m, cur.index, cur.d);

@@ -72,8 +72,9 @@ TEST(Cli, PrdWritesResultsAndSteps) {
   for (const char* key : {"d", "energy", "open_corners", "cracked", "reactions"}) EXPECT_TRUE(j["steps"][1].contains(key)) << key;
   EXPECT_EQ(j["steps"][1]["reactions"][0]["support"], "ground");
   EXPECT_EQ(j["steps"][1]["reactions"][0]["force"].size(), 2u);
-  for (const char* key : {"total_s", "lp_s", "lp_solves"}) EXPECT_TRUE(j["timing"].contains(key)) << key;
+  for (const char* key : {"total_s", "lp_s", "lp_solves", "basis_evaluations"}) EXPECT_TRUE(j["timing"].contains(key)) << key;
   EXPECT_GE(j["timing"]["lp_solves"].get<int>(), stable + 1);
+  EXPECT_EQ(j["timing"]["basis_evaluations"].get<int>(), 0);  // a fixed run predicts nothing
   // steps.csv: a header and one row per step.
   std::ifstream csv(out / "steps.csv");
   int lines = 0;

@@ -101,5 +101,49 @@ TEST(PrdExtremes, BlocksWithAspectRatioOfOneHundred) {
   }
 }
 
+// The event-driven run at the same extremes: scaled geometry gives the scaled capacity (its
+// tolerance and longest move scale with the scene), event tolerances over three decades agree
+// with the finest fixed run within each tolerance, and a block of aspect ratio 100 tips
+// within the tolerance of atan(b/h).
+TEST(PrdExtremes, AdaptiveRunsScaleKeepTheirToleranceAndTip) {
+  auto adaptive_arch = [](double scale, double event_over_size) {
+    CircularArch a;
+    a.radius = scale;
+    a.thickness = 0.15 * scale;
+    a.voussoirs = 20;
+    a.step = 1e-3 * 2 * scale;
+    a.max_steps = 1000000;
+    Case c = circular_arch(a);
+    c.prd.contact_tolerance = 1e-5 * scale;
+    c.prd.adaptive = true;
+    c.prd.event_tolerance = event_over_size * 2 * scale;
+    return prd_run(c, PrdSettings::from_case(c));
+  };
+  const RunResult unit = adaptive_arch(1.0, 1e-4);
+  ASSERT_EQ(unit.stopped, "collapse") << unit.message;
+  for (double scale : {0.01, 100.0}) {
+    const RunResult r = adaptive_arch(scale, 1e-4);
+    EXPECT_EQ(r.stopped, "collapse") << scale;
+    EXPECT_NEAR(r.capacity / scale, unit.capacity, 1e-6 * unit.capacity) << scale;
+  }
+  const RunResult fine = arch(1.0, 1e-5);
+  for (double tol : {1e-5, 1e-4, 1e-3}) {
+    const RunResult r = adaptive_arch(1.0, tol);
+    EXPECT_EQ(r.stopped, "collapse") << tol << ": " << r.message;
+    // Within the tolerance and the fine run's own step (2e-5).
+    EXPECT_NEAR(r.capacity, fine.capacity, 2 * tol + 2e-5) << tol;
+  }
+
+  const Case c = parse_case(R"({"blocks": [{"id": "g", "vertices": [[-20, -1], [20, -1], [20, 0], [-20, 0]], "support": true},
+      {"id": "b", "vertices": [[0, 0], [0.01, 0], [0.01, 1], [0, 1]], "density": 2000}],
+      "motion": {"step": 1e-3, "max_steps": 1000, "supports": [{"block": "g", "rotation": 1.0, "about": [-20, -1]}]},
+      "prd": {"adaptive": true, "event_tolerance": 1e-6}})", "slender.json");
+  const RunResult r = prd_run(c, PrdSettings::from_case(c));
+  EXPECT_EQ(r.stopped, "collapse") << r.message;
+  EXPECT_LE(r.capacity, std::atan(0.01) + 1e-12);
+  EXPECT_GT(r.capacity, std::atan(0.01) - 1e-6);
+  EXPECT_LT(r.timing.lp_solves, 40);
+}
+
 }  // namespace
 }  // namespace masonry
