@@ -24,6 +24,7 @@ void capacity_run(benchmark::State& state, const std::string& name, bool adaptiv
     benchmark::DoNotOptimize(r.capacity);
     state.counters["capacity_m"] = r.capacity;
     state.counters["lp_solves"] = static_cast<double>(r.timing.lp_solves);
+    state.counters["basis_evals"] = static_cast<double>(r.timing.basis_evaluations);
     lp_share = r.timing.lp_s / r.timing.total_s;
   }
   state.counters["glpk_share"] = lp_share;
@@ -43,6 +44,8 @@ BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_rotation, std::string("cath
 // Event-driven runs (--adaptive): the same capacities, events located to 1e-4 of the scene.
 BENCHMARK_CAPTURE(capacity_run, pointed_arch_adaptive, std::string("pointed-arch"), true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_adaptive, std::string("cathedral-settlement"), true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_rotation_adaptive, std::string("cathedral-settlement-rotation"), true)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
