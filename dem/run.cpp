@@ -190,7 +190,6 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
       r.stopped = r.collapsed ? "collapse" : "error";
       if (!r.collapsed) r.message = "the initial configuration did not settle within the hold time";
     } else {
-      r.stopped = "max_steps";
       const long long n_move = std::max<long long>(1, static_cast<long long>(std::ceil(s.move_time / m.dt())));
       for (int k = 1; k <= s.max_steps; ++k) {
         const double d0 = (k - 1) * s.step;
@@ -214,6 +213,9 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
           break;
         }
       }
+      // Only now: the results handed out on the way say "running", so a run stopped from
+      // outside does not look finished.
+      if (!r.collapsed) r.stopped = "max_steps";
     }
   } catch (const std::exception& e) {
     fail(e.what());

@@ -31,9 +31,9 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-// Whether a run read back had ended. A "max_steps" run must have reached the end of the path:
-// results written while a run is going may already say so (the DEM's do), and a run stopped
-// from outside leaves them that way.
+// Whether a run read back had ended: results written while a run is going say "running", and a
+// "max_steps" run must also have reached the end of the path (DEM results written before
+// 2026-11-22 said "max_steps" while going, and a run stopped from outside left them so).
 bool finished(const RunResult& r, const Case& c) {
   if (r.stopped == "collapse" || r.stopped == "error") return true;
   if (r.stopped != "max_steps" || r.steps.empty()) return false;

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include "dem.hpp"
 #include "util.hpp"
@@ -31,13 +34,13 @@ Case tilt_case(double b, double h, double phi_deg) {
   return c;
 }
 
-RunResult run(const Case& c) {
+RunResult run(const Case& c, const std::function<void(const RunResult&)>& on_step = {}) {
   DemSettings s = DemSettings::from_case(c);
   // One degree per second: the support starts and stops abruptly (constant velocity), and a
   // faster tilt would throw a block that is close to toppling over its corner.
   s.move_time = 1.0;
   s.collapse_drift = 0.02;   // m; the block is 0.2-0.4 m
-  return dem_run(c, s);
+  return dem_run(c, s, on_step);
 }
 
 TEST(DemTilt, SlidesAtTheFrictionAngle) {
@@ -64,6 +67,19 @@ TEST(DemTilt, ToppleAtAtanBOverH) {
   // Toppling: the block has turned well past the slab.
   const StepRecord& last = r.steps.back();
   EXPECT_GT(std::abs(last.poses[1].angle - last.d), 0.05);
+}
+
+// The results a run hands out while it goes (and a command writes as it goes) say "running":
+// a run stopped from outside must not look finished. Only the end says how it ended.
+TEST(DemTilt, ResultsSayRunningUntilTheRunEnds) {
+  Case c = tilt_case(0.4, 0.2, 35);  // 2 degrees: far from sliding (35) and toppling (63)
+  c.motion.max_steps = 2;
+  std::vector<std::string> seen;
+  const RunResult r = run(c, [&](const RunResult& partial) { seen.push_back(partial.stopped); });
+  EXPECT_EQ(r.stopped, "max_steps") << r.message;
+  EXPECT_EQ(r.stable_steps, 2);
+  ASSERT_EQ(seen.size(), 3u);  // the initial configuration and two increments
+  for (const std::string& st : seen) EXPECT_EQ(st, "running");
 }
 
 }  // namespace
