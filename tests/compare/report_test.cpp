@@ -3,16 +3,12 @@
 // slider's test hook changes the drawn step, markup in a case name does not run).
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <utility>
 #include <vector>
 
+#include "common.hpp"
 #include "compare.hpp"
 #include "prd.hpp"
 #include "report.hpp"
@@ -22,29 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("masonry-compare-test-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-int run(const std::string& cmd) {
-  const int rc = std::system(cmd.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
+using test::read;
+using test::run;
+using test::write;
 
 const std::string kArch = std::string(MASONRY_SOURCE_DIR) + "/cases/pointed-arch.json";
 
@@ -55,7 +31,8 @@ const std::string kPayload =
     "<img src=x onerror=\"document.body.setAttribute('data-pwned','y'+'es')\">";
 
 TEST(CompareCommand, ToleranceGateSetsTheExitCode) {
-  const fs::path d = fresh_dir("gate");
+  const test::Scratch scratch("compare-gate");
+  const fs::path d = scratch.path;
   ASSERT_EQ(run(std::string(MASONRY_EXE) + " prd " + kArch + " --out " + (d / "a").string() + " 2>/dev/null"), 0);
   // b: the same run with its capacity doctored to 1.2 times.
   fs::create_directories(d / "b");
@@ -125,7 +102,8 @@ std::string dump_dom(const fs::path& html, const std::string& fragment, const fs
 
 TEST(CompareReport, HtmlRunsInHeadlessChromium) {
   if (!have_chromium()) GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it; CI runs this test)";
-  const fs::path d = fresh_dir("chromium");
+  const test::Scratch scratch("compare-chromium");
+  const fs::path d = scratch.path;
   Case c;
   RunResult a, b;
   Report r = markup_report(c, a, b);

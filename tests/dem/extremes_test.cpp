@@ -92,26 +92,10 @@ TEST(DemExtremes, StiffnessFrom1e6To1e13PaPerM) {
   }
 }
 
-// A block on a slab that tilts one degree per increment (as in tilt_test.cpp): it slides when the
+// A block on a slab that tilts one degree per increment (test::tilt_case): it slides when the
 // tilt reaches phi if tan(phi) < b/h, and topples at atan(b/h) otherwise; phi = 90 degrees is no
 // slip limit at all.
-RunResult tilt(double b, double h, double phi_deg) {
-  Case c = test::slab_case();
-  c.blocks.push_back(test::rect("block", -b / 2, 0, b / 2, h, 2000, false));
-  SupportMotion m;
-  m.block = 0;
-  m.rotation = 1.0;
-  m.about = Vec2(0, -0.05);
-  c.motion.supports.push_back(m);
-  c.motion.step = 1.0 * kDeg;
-  c.motion.max_steps = 80;
-  c.dem.friction_angle = phi_deg;
-  c.dem.hold_time = 1.0;
-  DemSettings s = DemSettings::from_case(c);
-  s.move_time = 1.0;
-  s.collapse_drift = 0.02;
-  return dem_run(c, s);
-}
+RunResult tilt(double b, double h, double phi_deg) { return test::tilt_run(test::tilt_case(b, h, phi_deg)); }
 
 TEST(DemExtremes, FrictionFrom5To90Degrees) {
   struct Row {

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,35 +16,9 @@ using namespace masonry;
 
 constexpr double kDeg = M_PI / 180;
 
-// Block b wide and h high on the slab; the slab turns about its centroid, 1 rad per m of d, so
-// d is the tilt in rad, increments of one degree.
-Case tilt_case(double b, double h, double phi_deg) {
-  Case c = test::slab_case();
-  c.blocks.push_back(test::rect("block", -b / 2, 0, b / 2, h, 2000, false));
-  SupportMotion m;
-  m.block = 0;
-  m.rotation = 1.0;
-  m.about = Vec2(0, -0.05);
-  c.motion.supports.push_back(m);
-  c.motion.step = 1.0 * kDeg;
-  c.motion.max_steps = 80;
-  c.dem.friction_angle = phi_deg;
-  c.dem.hold_time = 1.0;
-  return c;
-}
-
-RunResult run(const Case& c, const std::function<void(const RunResult&)>& on_step = {}) {
-  DemSettings s = DemSettings::from_case(c);
-  // One degree per second: the support starts and stops abruptly (constant velocity), and a
-  // faster tilt would throw a block that is close to toppling over its corner.
-  s.move_time = 1.0;
-  s.collapse_drift = 0.02;   // m; the block is 0.2-0.4 m
-  return dem_run(c, s, on_step);
-}
-
 TEST(DemTilt, SlidesAtTheFrictionAngle) {
   const double b = 0.4, h = 0.2, phi = 20.5;  // tan(phi) = 0.37 < b/h = 2
-  const RunResult r = run(tilt_case(b, h, phi));
+  const RunResult r = test::tilt_run(test::tilt_case(b, h, phi));
   ASSERT_EQ(r.stopped, "collapse") << r.message;
   const double cap = r.capacity / kDeg;
   EXPECT_LE(cap, phi);
@@ -58,7 +31,7 @@ TEST(DemTilt, SlidesAtTheFrictionAngle) {
 
 TEST(DemTilt, ToppleAtAtanBOverH) {
   const double b = 0.2, h = 0.4, phi = 45;  // tan(phi) = 1 > b/h = 0.5
-  const RunResult r = run(tilt_case(b, h, phi));
+  const RunResult r = test::tilt_run(test::tilt_case(b, h, phi));
   ASSERT_EQ(r.stopped, "collapse") << r.message;
   const double topple = std::atan(b / h) / kDeg;  // 26.57 degrees
   const double cap = r.capacity / kDeg;
@@ -72,10 +45,10 @@ TEST(DemTilt, ToppleAtAtanBOverH) {
 // The results a run hands out while it goes (and a command writes as it goes) say "running":
 // a run stopped from outside must not look finished. Only the end says how it ended.
 TEST(DemTilt, ResultsSayRunningUntilTheRunEnds) {
-  Case c = tilt_case(0.4, 0.2, 35);  // 2 degrees: far from sliding (35) and toppling (63)
+  Case c = test::tilt_case(0.4, 0.2, 35);  // 2 degrees: far from sliding (35) and toppling (63)
   c.motion.max_steps = 2;
   std::vector<std::string> seen;
-  const RunResult r = run(c, [&](const RunResult& partial) { seen.push_back(partial.stopped); });
+  const RunResult r = test::tilt_run(c, [&](const RunResult& partial) { seen.push_back(partial.stopped); });
   EXPECT_EQ(r.stopped, "max_steps") << r.message;
   EXPECT_EQ(r.stable_steps, 2);
   ASSERT_EQ(seen.size(), 3u);  // the initial configuration and two increments

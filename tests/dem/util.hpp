@@ -2,8 +2,10 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 
 #include "case.hpp"
+#include "dem.hpp"
 
 namespace masonry::test {
 
@@ -26,6 +28,33 @@ inline Case slab_case() {
   c.dem.ks = 4e7;
   c.motion.max_steps = 0;
   return c;
+}
+
+// A block b wide and h high on the slab, which turns about its centroid one degree per
+// increment (1 rad per m of d, so d is the tilt in rad): it slides when the tilt reaches phi if
+// tan(phi) < b/h, and topples at atan(b/h) otherwise.
+inline Case tilt_case(double b, double h, double phi_deg) {
+  Case c = slab_case();
+  c.blocks.push_back(rect("block", -b / 2, 0, b / 2, h, 2000, false));
+  SupportMotion m;
+  m.block = 0;
+  m.rotation = 1.0;
+  m.about = Vec2(0, -0.05);
+  c.motion.supports.push_back(m);
+  c.motion.step = M_PI / 180;
+  c.motion.max_steps = 80;
+  c.dem.friction_angle = phi_deg;
+  c.dem.hold_time = 1.0;
+  return c;
+}
+
+// Its DEM run. One degree per second: the support starts and stops abruptly (constant
+// velocity), and a faster tilt would throw a block that is close to toppling over its corner.
+inline RunResult tilt_run(const Case& c, const std::function<void(const RunResult&)>& on_step = {}) {
+  DemSettings s = DemSettings::from_case(c);
+  s.move_time = 1.0;
+  s.collapse_drift = 0.02;  // m; the blocks are 0.2-0.4 m
+  return dem_run(c, s, on_step);
 }
 
 }  // namespace masonry::test

@@ -1,54 +1,20 @@
-// Helpers of the sweep tests: scratch directories, files, the tilting block's closed form, and
-// running the masonry executable.
+// Helpers of the sweep tests: the tilting block's closed form (files, scratch directories and
+// commands: common.hpp).
 #pragma once
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "case.hpp"
+#include "common.hpp"
 #include "sweep.hpp"
 
 namespace masonry::test {
 
-namespace fs = std::filesystem;
-
-inline std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-inline void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-}
-
-// A scratch directory per test (and process: ctest runs tests side by side), removed afterwards.
-struct Scratch {
-  fs::path path;
-  explicit Scratch(const std::string& name) {
-    path = fs::temp_directory_path() / ("masonry-sweep-test-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Scratch() { fs::remove_all(path); }
-};
-
-// Runs a shell command; its exit code (-1 when it did not exit).
-inline int run(const std::string& cmd) {
-  const int rc = std::system(cmd.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
 
 inline const std::string kTiltCase = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json";
 

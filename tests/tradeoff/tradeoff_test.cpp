@@ -3,16 +3,12 @@
 // tilting support, where the capacity for each step is known in closed form.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "common.hpp"
 #include "tradeoff.hpp"
 
 namespace masonry {
@@ -20,29 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("masonry-tradeoff-test-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-int run(const std::string& cmd) {
-  const int rc = std::system(cmd.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
+using test::read;
+using test::run;
+using test::write;
 
 // The error message of parse_plan for `text`, or "" when it parses.
 std::string plan_error(const std::string& text) {
@@ -219,7 +195,8 @@ const char* kTiltPlan = R"({
 
 TEST(TradeoffRun, PrdCapacitiesOnTheGridBelowTheToppleAngle) {
   const Case c = parse_case(kTiltCase, "tilt.json");
-  const fs::path d = fresh_dir("run");
+  const test::Scratch scratch("tradeoff-run");
+  const fs::path d = scratch.path;
   const std::vector<PlannedRun> plan = expand_plan(c, parse_plan(kTiltPlan, "plan.json"), {"prd"}, "plan.json");
   RunOptions o;
   o.runs_dir = (d / "runs").string();
@@ -287,7 +264,8 @@ TEST(TradeoffRun, FailedRunsAreRecordedAndTheRestGoOn) {
     EXPECT_FALSE(r.ok);
     EXPECT_TRUE(std::isnan(r.capacity_err));
   }
-  const fs::path d = fresh_dir("failed");
+  const test::Scratch scratch("tradeoff-failed");
+  const fs::path d = scratch.path;
   write_tradeoff(d.string(), t);
   const std::string md = read(d / "report.md");
   EXPECT_NE(md.find("2 settings did not finish"), std::string::npos) << md;
@@ -314,7 +292,8 @@ void expect_no_nan(const fs::path& p) {
 }
 
 TEST(TradeoffCommand, WritesEveryFileWithoutNaN) {
-  const fs::path d = fresh_dir("cli");
+  const test::Scratch scratch("tradeoff-cli");
+  const fs::path d = scratch.path;
   write(d / "tilt.json", kTiltCase);
   write(d / "plan.json", kTiltPlan);
   const std::string out = (d / "out").string();
@@ -353,7 +332,8 @@ TEST(TradeoffCommand, WritesEveryFileWithoutNaN) {
 }
 
 TEST(TradeoffCommand, BadOptionsGetOneLine) {
-  const fs::path d = fresh_dir("bad");
+  const test::Scratch scratch("tradeoff-bad");
+  const fs::path d = scratch.path;
   write(d / "tilt.json", kTiltCase);
   const std::string base = std::string(MASONRY_EXE) + " tradeoff " + (d / "tilt.json").string() + " --out " + (d / "out").string();
   const std::vector<std::pair<std::string, std::string>> bad = {
