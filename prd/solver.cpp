@@ -969,9 +969,9 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   //  - Opening or collapse: a property of the configuration the LP is solved on: seen on d_k,
   //    it happened in (d_{k-1}, d_k]. Moves are planned so that this bracket is within the
   //    tolerance: the forces' trend on the current basis (from the previous configurations on
-  //    it, or from the basis evaluated a little further on) predicts where one of them reaches
-  //    0, the basis evaluated there corrects the prediction, and the run stops half a tolerance
-  //    short of it, then steps half a tolerance past. A longer bracket is closed by going back
+  //    it) guesses where one of them reaches 0, the basis evaluated where the move would end
+  //    corrects the guess (plan_move), and the run stops half a tolerance short of the zero,
+  //    then steps half a tolerance past. A longer bracket is closed by going back
   //    to d_{k-1}, to where its basis's forces, interpolated to d_k, reach 0, or else half way
   //    (no LP is needed for the move back), until it is within the tolerance.
   //  - Closing: found on the move itself: the move stops where the first open corner's gap
@@ -1123,6 +1123,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
       save_basis(m, cur);
       double h_take = h;
       Closing shut;  // a closing the move is cut short at
+      Move planned;  // the opening the move was planned against
       if (s.adaptive) {
         if (std::isfinite(seen)) {
           h_take = std::min(h, toward_event(cur.d));
@@ -1150,9 +1151,8 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
             x = std::min(x, land(guess.to_open));
           }
           if (d_end - cur.d > 1e-9 * h_ref) x = std::min(x, d_end - cur.d);
-          const Move mv = plan_move(m, cur, h, h_open, x, guess, slope, ignored, 2 * tol_ev, land);
-          h_take = mv.h;
-          if (mv.to_open <= h_take) passing = mv.corner;
+          planned = plan_move(m, cur, h, h_open, x, guess, slope, ignored, 2 * tol_ev, land);
+          h_take = planned.h;
         }
         if (d_end - cur.d > 1e-9 * h_ref) h_take = std::min(h_take, d_end - cur.d);
         if (!closing.empty()) {
@@ -1161,6 +1161,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
           shut = first_closing(m, Path{cur.U, cur.dU}, gap, rate, h_take);
           if (std::isfinite(shut.at)) h_take = shut.at;
         }
+        if (planned.to_open <= h_take) passing = planned.corner;
         // The next LP's step: inside a bracket, the next move in it; else as long as allowed,
         // the predictions cutting the move short.
         h_plan = h_max;
