@@ -55,8 +55,9 @@ struct Timing {
   double total_s = 0.0;  // PRD: wall time of the run without I/O; DEM: the run's thread CPU time
   double lp_s = 0.0;     // PRD: time in GLPK
   long long lp_solves = 0;
-  // PRD (event-driven): evaluations of an LP's final basis at a nearby configuration without
-  // simplex iterations (one factorisation each), for the forces' trend; their time is in lp_s.
+  // PRD (event-driven): evaluations of an LP's final basis at another configuration (where a
+  // planned move would end) without simplex iterations, one factorisation each; their time is
+  // in lp_s.
   long long basis_evaluations = 0;
   long long cycles = 0;  // DEM: integration cycles
 };
