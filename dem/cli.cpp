@@ -3,18 +3,64 @@
 #include <iostream>
 #include <memory>
 
+#include <filesystem>
+#include <mutex>
+
 #include "command.hpp"
+#include "convergence.hpp"
 #include "dem.hpp"
+#include "prd.hpp"
+#include "variants.hpp"
 
 namespace masonry {
 
+namespace {
+
+struct Opts {
+  std::string case_path, out_dir;
+  std::optional<double> friction, reduction, damping, factor, eq_tol, vel_tol, hold, step, move_time, ramp, drift, open_gap, kinetic,
+      bracket;
+  std::optional<int> max_steps;
+  bool quiet = false, convergence = false;
+  int jobs = 2;
+  double spread_limit = 0.02, prd_limit = 0.03;
+};
+
+// The convergence study: PRD once for reference, the DEM variants in parallel, each written to
+// DIR/<variant>/ as it goes, then the verdict.
+int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
+  Convergence study;
+  study.case_name = c.name;
+  study.spread_limit = o.spread_limit;
+  study.prd_limit = o.prd_limit;
+  const RunResult prd = prd_run(c, PrdSettings::from_case(c), {});
+  if (prd.stopped == "collapse" || prd.stopped == "max_steps") study.prd_capacity = prd.capacity;
+  const std::vector<DemVariant> variants = convergence_variants(base);
+  std::mutex io;
+  const std::vector<RunResult> runs = run_variants(
+      c, variants, o.jobs,
+      [&](size_t i, const RunResult& part) {
+        write_results((std::filesystem::path(o.out_dir) / variants[i].name).string(), part, c);
+      },
+      [&](size_t i, const RunResult& r) {
+        write_results((std::filesystem::path(o.out_dir) / variants[i].name).string(), r, c);
+        if (o.quiet) return;
+        std::lock_guard<std::mutex> lock(io);
+        std::fprintf(stderr, "dem convergence: %-15s %s, capacity %.6g m, %.3g s CPU\n", variants[i].name.c_str(), r.stopped.c_str(),
+                     r.capacity, r.timing.total_s);
+      });
+  for (size_t i = 0; i < variants.size(); ++i) study.entries.push_back({variants[i].name, variants[i].what, runs[i]});
+  write_file_atomic((std::filesystem::path(o.out_dir) / "convergence.json").string(), convergence_json(study).dump(1) + "\n");
+  const std::string md = convergence_markdown(study);
+  write_file_atomic((std::filesystem::path(o.out_dir) / "convergence.md").string(), md);
+  const ConvergenceVerdict v = judge(study);
+  if (!o.quiet) std::fprintf(stderr, "dem convergence: %s (%s)\n", v.ok ? "converged" : "NOT shown converged", (std::filesystem::path(o.out_dir) / "convergence.md").c_str());
+  return v.ok ? 0 : 1;
+}
+
+}  // namespace
+
 void add_dem_commands(CLI::App& app, Commands& out) {
-  struct Opts {
-    std::string case_path, out_dir;
-    std::optional<double> friction, reduction, damping, factor, eq_tol, vel_tol, hold, step, move_time, ramp, drift, open_gap;
-    std::optional<int> max_steps;
-    bool quiet = false;
-  };
   auto o = std::make_shared<Opts>();
   CLI::App* sub = app.add_subcommand("dem", "Rigid-block DEM capacity run (explicit, Mohr-Coulomb joints)");
   sub->add_option("case", o->case_path, "Case file (masonry-case/1 JSON)")->required();
@@ -25,14 +71,22 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   sub->add_option("--timestep-factor", o->factor, "Time step / critical time step bound, in (0, 1] (default 0.2)");
   sub->add_option("--equilibrium-tolerance", o->eq_tol, "Largest unbalanced force / block weight at equilibrium (default 1e-4)");
   sub->add_option("--velocity-tolerance", o->vel_tol, "Largest block speed at equilibrium, m/s (default 1e-5)");
-  sub->add_option("--hold-time", o->hold, "Model-time budget of each hold, s (default 3)");
+  sub->add_option("--hold-time", o->hold, "Model-time cap of one hold, s: a hold that neither settles nor runs away by then is undecided (default 30)");
   sub->add_option("--step", o->step, "Increment of the support path parameter d, m (case: motion.step)");
   sub->add_option("--max-steps", o->max_steps, "Number of increments at most (case: motion.max_steps)");
-  sub->add_option("--move-time", o->move_time, "Model time to travel one increment, s (default: the case's dem.move_time)");
+  sub->add_option("--kinetic-ratio", o->kinetic, "Moves keep the kinetic energy below this x total weight x increment (default 1e-3)");
+  sub->add_option("--move-time", o->move_time, "Constant-speed move over this model time per increment, s, instead of the kinetic-energy servo (default 0: servo)");
+  sub->add_option("--bracket-fraction", o->bracket, "Bisect a failed increment down to this fraction of the step (default 0.01; 0: no bisection)");
   sub->add_option("--ramp-fraction", o->ramp, "Fraction of the move time spent speeding up (and slowing down), 0..0.5 (default 0.25; 0: abrupt)");
   sub->add_option("--collapse-drift", o->drift, "Block travel within an unsettled hold that means collapse, m (default 2% of scene)");
   sub->add_option("--open-gap", o->open_gap, "Gap above which a joint corner is open, m (default prd.contact_tolerance)");
   sub->add_flag("--quiet", o->quiet, "No progress lines");
+  sub->add_flag("--convergence", o->convergence,
+                "Convergence study: the run at these settings and at settings that must not matter (dem/README.md), "
+                "DIR/convergence.{json,md}, each run in DIR/<variant>/; exit code 1 when the spread or the default against PRD exceeds its limit");
+  sub->add_option("--jobs", o->jobs, "Convergence study: runs at a time, one thread each (default 2)")->check(CLI::PositiveNumber);
+  sub->add_option("--spread-limit", o->spread_limit, "Convergence study: largest (max - min) / default capacity (default 0.02)");
+  sub->add_option("--prd-limit", o->prd_limit, "Convergence study: largest |default - PRD| / PRD capacity (default 0.03)");
   out.push_back({sub, [o]() {
                    const Case c = load_case(o->case_path);
                    DemSettings s = DemSettings::from_case(c);
@@ -46,16 +100,19 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    if (o->step) s.step = *o->step;
                    if (o->max_steps) s.max_steps = *o->max_steps;
                    if (o->move_time) s.move_time = *o->move_time;
+                   if (o->kinetic) s.kinetic_ratio = *o->kinetic;
+                   if (o->bracket) s.bracket_fraction = *o->bracket;
                    if (o->ramp) s.ramp_fraction = *o->ramp;
                    if (o->drift) s.collapse_drift = *o->drift;
                    if (o->open_gap) s.open_gap = *o->open_gap;
+                   if (o->convergence) return run_convergence(c, s, *o);
                    const RunResult r = dem_run(c, s, [&](const RunResult& part) {
                      write_results(o->out_dir, part, c);
                      if (o->quiet || part.steps.empty()) return;
                      const StepRecord& st = part.steps.back();
                      std::fprintf(stderr, "dem: step %d d=%.6g m  cycles %lld (total %lld)  unbalanced %.2e  %s\n", st.index, st.d,
                                   st.extra.value("cycles", 0LL), part.timing.cycles, st.extra.value("unbalanced_ratio", 0.0),
-                                  st.extra.value("settled", false) ? "settled" : "NOT settled");
+                                  st.extra.value("hold_end", std::string("?")).c_str());
                    });
                    write_results(o->out_dir, r, c);
                    if (!o->quiet)
@@ -63,6 +120,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                                   r.stopped.c_str(), r.capacity, r.stable_steps, r.timing.cycles, r.timing.total_s,
                                   r.settings.value("dt", 0.0));
                    if (r.stopped == "error") throw std::runtime_error(r.message);
+                   if (r.stopped == "undecided") std::fprintf(stderr, "dem: %s\n", r.message.c_str());
                    return 0;
                  }});
 }

@@ -26,10 +26,12 @@ struct DemSettings {
   double damping = 0.8;              // local damping coefficient alpha in [0, 1)
   // dt = timestep_factor * dt_crit, dt_crit = 2 / omega_bound (see DemModel::critical_dt);
   // factors above 1 are refused.
-  double timestep_factor = 0.2;
+  double timestep_factor = 0.8;
   double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight at equilibrium
   double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
-  double hold_time = 3.0;               // model-time budget of a hold, s
+  // Model-time cap of one hold, s: a hold ends on equilibrium or on evidence of collapse; one that
+  // reaches this cap without either is "undecided" (never a capacity, never an error).
+  double hold_time = 30.0;
   double step = 0.001;                  // increment of d, m
   int max_steps = 1000;
   // Model time over which the supports travel one increment, s. They move at constant velocity
@@ -37,7 +39,7 @@ struct DemSettings {
   // A velocity that jumps from zero hits the structure with an elastic shock of v sqrt(k m): a
   // fast move (0.02 s per 4 mm on the test arch) makes the springing joint slip and inflates the
   // capacity (README.md). ramp_fraction = 0 is the paper's abrupt constant velocity.
-  double move_time = 0.2;
+  double move_time = 0.0;
   double ramp_fraction = 0.25;  // in [0, 0.5]
   // A hold that moves some block farther than this from where the hold began, without settling,
   // is a collapse; <= 0 means 2% of the scene size.
@@ -45,6 +47,16 @@ struct DemSettings {
   // A joint corner whose normal gap exceeds this is open, m; < 0 means the case's
   // prd.contact_tolerance, so DEM and PRD call hinges alike.
   double open_gap = -1.0;
+  // The quasi-static protocol (dem/README.md). While the supports move, their speed is servoed so
+  // that the kinetic energy of the blocks stays below kinetic_ratio x total weight x the move's
+  // length: the loading rate follows from the structure's own response. move_time > 0 replaces
+  // the servo by a move at constant speed over that model time (the paper's protocol).
+  double kinetic_ratio = 1e-3;
+  // Once an increment fails (collapse, or a hold that neither settles nor runs away), the run
+  // goes back to the last equilibrium and bisects the failed increment until the bracket is
+  // narrower than bracket_fraction x step (0: no bisection, the capacity is the last settled
+  // increment).
+  double bracket_fraction = 0.01;
   // Tests only: accept a time-step factor above 1, so the run's blow-up guard (an energy balance
   // checked every few cycles, dem_run) can be exercised. No case field or option sets it.
   bool allow_unstable_timestep = false;
@@ -57,6 +69,13 @@ struct DemBlockState {
   double angle = 0.0;   // rotation since the start, rad
   Vec2 velocity{0, 0};  // m/s (at the last half step)
   double spin = 0.0;    // rad/s
+};
+
+// A copy of a model's dynamic state (poses, velocities, contact history, support position), to
+// go back to an equilibrium and try again (the collapse bracket).
+struct DemSnapshot {
+  struct Data;
+  std::shared_ptr<const Data> data;
 };
 
 // The simulator: build it from a case, then place the supports and cycle.
@@ -102,8 +121,17 @@ class DemModel {
   double max_overlap() const;   // m
   long long broadphase_rebuilds() const;
 
+  DemSnapshot save() const;
+  // Back to a saved state of this model (the cycle count and the timing keep counting).
+  void restore(const DemSnapshot& s);
+
+  // Normal gap of each joint corner (A then B per joint), m: the larger of the two blocks' copies
+  // of the corner standing off the other block's face (negative: overlap).
+  std::vector<double> corner_gaps(const std::vector<Interface>& joints) const;
   // The current state as a step record (poses, reactions, open corners, joint forces, energy).
-  StepRecord record(const std::vector<Interface>& joints) const;
+  // A corner is open when its gap exceeds open_gap beyond `gap_reference` (its gap in the
+  // settled initial state, so elastic settling under gravity is not read as a hinge; empty: 0).
+  StepRecord record(const std::vector<Interface>& joints, const std::vector<double>& gap_reference = {}) const;
 
  private:
   struct Impl;

@@ -69,6 +69,8 @@ DemSettings DemSettings::from_case(const Case& c) {
   s.move_time = c.dem.move_time;
   s.ramp_fraction = c.dem.ramp_fraction;
   s.collapse_drift = c.dem.collapse_drift;
+  s.kinetic_ratio = c.dem.kinetic_ratio;
+  s.bracket_fraction = c.dem.bracket_fraction;
   s.step = c.motion.step;
   s.max_steps = c.motion.max_steps;
   return s;
@@ -125,14 +127,16 @@ void DemModel::Impl::setup() {
       {"hold_time", s.hold_time},           {"move_time", s.move_time},     {"step", s.step},
       {"equilibrium_tolerance", s.equilibrium_tolerance}, {"velocity_tolerance", s.velocity_tolerance},
       {"collapse_drift", s.collapse_drift}, {"open_gap", s.open_gap},       {"kn", s.kn.value_or(1.0)},
-      {"ks", s.ks.value_or(1.0)}};
+      {"ks", s.ks.value_or(1.0)},           {"kinetic_ratio", s.kinetic_ratio}, {"bracket_fraction", s.bracket_fraction}};
   for (const auto& [name, v] : numbers)
     if (!std::isfinite(v)) throw std::runtime_error(std::string("dem: setting ") + name + " must be a finite number");
   if (!(s.friction_angle >= 0 && s.friction_angle <= 90)) throw std::runtime_error("dem: friction angle must lie in [0, 90] degrees");
   if (!(s.damping >= 0 && s.damping < 1)) throw std::runtime_error("dem: damping must lie in [0, 1)");
   if (!(s.stiffness_reduction > 0)) throw std::runtime_error("dem: stiffness reduction must be positive");
   if (!(s.young_modulus > 0) || !(s.poisson > -1 && s.poisson < 0.5)) throw std::runtime_error("dem: need E > 0 and -1 < nu < 0.5");
-  if (!(s.hold_time > 0) || !(s.move_time > 0)) throw std::runtime_error("dem: hold time and move time must be positive");
+  if (!(s.hold_time > 0) || !(s.move_time >= 0)) throw std::runtime_error("dem: hold time must be positive and move time >= 0");
+  if (!(s.kinetic_ratio > 0)) throw std::runtime_error("dem: kinetic ratio must be positive");
+  if (!(s.bracket_fraction >= 0 && s.bracket_fraction < 1)) throw std::runtime_error("dem: bracket fraction must lie in [0, 1)");
   if (!(s.ramp_fraction >= 0 && s.ramp_fraction <= 0.5)) throw std::runtime_error("dem: ramp fraction must lie in [0, 0.5]");
   if (!(s.equilibrium_tolerance > 0) || !(s.velocity_tolerance > 0)) throw std::runtime_error("dem: tolerances must be positive");
   if (!(s.step > 0) || s.max_steps < 0) throw std::runtime_error("dem: need step > 0 and max_steps >= 0");
@@ -522,7 +526,79 @@ double DemModel::energy_input() const {
   return w;
 }
 
-StepRecord DemModel::record(const std::vector<Interface>& joints) const {
+struct DemSnapshot::Data {
+  std::vector<Vec2> pos, vel, pos_rb;
+  std::vector<double> ang, spin, ang_rb, moved, turned;
+  std::vector<Pair> pairs;
+  bool rebuild_due = false;
+  double d_target = 0, d_now = 0, time = 0, support_work = 0, unbalanced = 0, speed = 0, ke = 0;
+};
+
+DemSnapshot DemModel::save() const {
+  const Impl& m = *p_;
+  auto d = std::make_shared<DemSnapshot::Data>();
+  d->pos = m.pos;
+  d->vel = m.vel;
+  d->pos_rb = m.pos_rb;
+  d->ang = m.ang;
+  d->spin = m.spin;
+  d->ang_rb = m.ang_rb;
+  d->moved = m.moved;
+  d->turned = m.turned;
+  d->pairs = m.pairs;
+  d->rebuild_due = m.rebuild_due;
+  d->d_target = m.d_target;
+  d->d_now = m.d_now;
+  d->time = m.time;
+  d->support_work = m.support_work;
+  d->unbalanced = m.unbalanced;
+  d->speed = m.speed;
+  d->ke = m.ke;
+  return {d};
+}
+
+void DemModel::restore(const DemSnapshot& snap) {
+  Impl& m = *p_;
+  const DemSnapshot::Data& d = *snap.data;
+  m.pos = d.pos;
+  m.vel = d.vel;
+  m.pos_rb = d.pos_rb;
+  m.ang = d.ang;
+  m.spin = d.spin;
+  m.ang_rb = d.ang_rb;
+  m.moved = d.moved;
+  m.turned = d.turned;
+  m.pairs = d.pairs;
+  m.rebuild_due = d.rebuild_due;
+  m.d_target = d.d_target;
+  m.d_now = d.d_now;
+  m.time = d.time;
+  m.support_work = d.support_work;
+  m.unbalanced = d.unbalanced;
+  m.speed = d.speed;
+  m.ke = d.ke;
+  // The world vertices and the cosines follow the restored poses (all blocks: a moving support
+  // is back where it was too).
+  m.transform_pieces(true);
+}
+
+std::vector<double> DemModel::corner_gaps(const std::vector<Interface>& joints) const {
+  const Impl& m = *p_;
+  std::vector<double> g;
+  g.reserve(2 * joints.size());
+  for (const Interface& J : joints) {
+    const double ci = std::cos(m.ang[J.i]), si = std::sin(m.ang[J.i]), cj = std::cos(m.ang[J.j]), sj = std::sin(m.ang[J.j]);
+    const Vec2 ni = rotate(J.normal, ci, si), nj = rotate(-J.normal, cj, sj);
+    for (int corner = 0; corner < 2; ++corner) {
+      const Vec2 P = corner == 0 ? J.a : J.b;
+      const Vec2 pi = m.pos[J.i] + rotate(P - m.c0[J.i], ci, si), pj = m.pos[J.j] + rotate(P - m.c0[J.j], cj, sj);
+      g.push_back(std::max((pj - pi).dot(ni), (pi - pj).dot(nj)));
+    }
+  }
+  return g;
+}
+
+StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vector<double>& gap_reference) const {
   const Impl& m = *p_;
   StepRecord r;
   r.d = m.d_now;
@@ -559,6 +635,9 @@ StepRecord DemModel::record(const std::vector<Interface>& joints) const {
     Vec2 np{0, 0};
   };
   std::vector<Acc> acc(joints.size());
+  const std::vector<double> gaps = corner_gaps(joints);
+  if (!gap_reference.empty() && gap_reference.size() != gaps.size())
+    throw std::logic_error("DemModel::record: gap reference of another joint list");
   auto joint_frame = [&](const Interface& J, Vec2& n, Vec2& t) {
     const double th = m.ang[J.i];
     n = rotate(J.normal, std::cos(th), std::sin(th));
@@ -602,18 +681,13 @@ StepRecord DemModel::record(const std::vector<Interface>& joints) const {
       joint_frame(J, f.n, t);
       r.forces.push_back(f);
     }
-    // A corner is open when either block's copy of it stands off the other block's face.
+    // A corner is open when either block's copy of it stands off the other block's face by more
+    // than open_gap beyond its gap in the reference state (a settled gap is not a hinge).
     bool cracked = false;
     for (int corner = 0; corner < 2; ++corner) {
-      const Vec2 P = corner == 0 ? J.a : J.b;
-      auto material = [&](int b) {
-        return Vec2(m.pos[b] + rotate(P - m.c0[b], std::cos(m.ang[b]), std::sin(m.ang[b])));
-      };
-      const Vec2 ni = rotate(J.normal, std::cos(m.ang[J.i]), std::sin(m.ang[J.i]));
-      const Vec2 nj = rotate(-J.normal, std::cos(m.ang[J.j]), std::sin(m.ang[J.j]));
-      const Vec2 pi = material(J.i), pj = material(J.j);
-      const double gap = std::max((pj - pi).dot(ni), (pi - pj).dot(nj));
-      if (gap > m.open_gap) {
+      const double gap = gaps[2 * k + corner];
+      const double ref = gap_reference.empty() ? 0.0 : std::max(0.0, gap_reference[2 * k + corner]);
+      if (gap - ref > m.open_gap) {
         r.open_corners.push_back({static_cast<int>(k), corner, gap});
         cracked = true;
       }

@@ -1,3 +1,6 @@
+// dem_run: the capacity run, as a sequence of named stages (dem/README.md, "Protocol"):
+// settle the initial configuration, then per increment move and hold; once an increment fails,
+// go back to the last equilibrium and bracket the collapse.
 #include <time.h>
 
 #include <chrono>
@@ -6,10 +9,14 @@
 #include <stdexcept>
 
 #include "dem.hpp"
+#include "protocol.hpp"
 
 namespace masonry {
 
 namespace {
+
+using dem::HoldEnd;
+using dem::HoldOutcome;
 
 // CPU time of the calling thread, s: a run's own cost even when a sweep runs many in parallel
 // threads on fewer cores.
@@ -19,96 +26,27 @@ double thread_cpu_s() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// Cycles between the cheap whole-model checks (energy budget, drift): a blow-up multiplies the
-// energy many times over within this many cycles, and a collapse drifts slowly against it.
-constexpr long long kCheckEvery = 64;
-
-// A state that is no longer finite stops the run before anything is recorded (the sum of the
-// kinetic energies carries a NaN or infinity from any block).
-void check_finite(const DemModel& m) {
-  if (!std::isfinite(m.kinetic_energy()) || !std::isfinite(m.unbalanced_ratio())) {
-    std::ostringstream msg;
-    msg << "dem: the integration produced a non-finite state at t = " << m.time() << " s (cycle " << m.cycles()
-        << "); refusing to record it";
-    throw std::runtime_error(msg.str());
-  }
+// How far a support point travels per unit of d, m/m: its translation plus its rotation over the
+// scene. The work the supports do on the structure over an increment is of the order of the
+// weight times this times the increment.
+double support_travel_per_d(const Case& c) {
+  double v = 0;
+  for (const SupportMotion& sm : c.motion.supports) v = std::max(v, sm.translation.norm() + std::abs(sm.rotation) * scene_size(c));
+  return v > 0 ? v : 1.0;
 }
 
-// Energy balance: kinetic + spring energy + dissipation = work of gravity, the loads and the
-// moving supports, so the kinetic energy can never exceed that input. The explicit scheme's own
-// error is a fraction of it at any stable step (tests/dem/energy_test.cpp: below half at the
-// stability limit); an unstable integration grows the kinetic energy geometrically and crosses
-// ten times the input (plus a floor far below any physical energy of the scene) within a few
-// checks.
-void check_energy(const DemModel& m, double floor) {
-  check_finite(m);
-  const double input = m.energy_input();
-  const double ke = m.kinetic_energy();
-  if (ke > 10 * std::max(input, 0.0) + floor) {
-    std::ostringstream msg;
-    msg << "dem: the integration blew up at t = " << m.time() << " s (cycle " << m.cycles() << "): kinetic energy " << ke
-        << " J exceeds the energy put in by gravity, loads and supports (" << input
-        << " J); time step too close to the stability limit for these stiffnesses and masses";
-    throw std::runtime_error(msg.str());
-  }
-}
-
-struct HoldOutcome {
-  bool settled = false;
-  double drift = 0;  // m, largest block displacement since the hold began
-  long long cycles = 0;
-  double time = 0;
+// One attempt to reach d1 from an equilibrium at d0: move, then hold.
+struct Attempt {
+  HoldOutcome hold;
+  long long cycles = 0;       // move and hold
+  long long move_cycles = 0;
+  double move_drift = 0;      // m, largest block displacement during the move
+  // What the structure still travelled during the hold over what it travelled during the move
+  // (a diagnostic, per step: on the cathedral with rotation it stays at 0.25-0.8 even with the
+  // supports 32 times slower, so it measures slow settling, not a lag behind the loading).
+  double lag() const { return move_drift > 0 ? hold.drift / move_drift : 0.0; }
 };
 
-double largest_move(const DemModel& m, const Case& c, const std::vector<DemBlockState>& from) {
-  double d = 0;
-  for (size_t b = 0; b < c.blocks.size(); ++b) {
-    if (c.blocks[b].support) continue;
-    d = std::max(d, (m.block(static_cast<int>(b)).position - from[b].position).norm());
-  }
-  return d;
-}
-
-std::vector<DemBlockState> snapshot(const DemModel& m, const Case& c) {
-  std::vector<DemBlockState> s(c.blocks.size());
-  for (size_t b = 0; b < c.blocks.size(); ++b) s[b] = m.block(static_cast<int>(b));
-  return s;
-}
-
-// Cycles with the supports still until equilibrium, the time budget, or a runaway (a block has
-// travelled past the collapse drift: waiting out the budget would only confirm it).
-HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, double collapse_drift, double energy_floor) {
-  HoldOutcome o;
-  const std::vector<DemBlockState> start = snapshot(m, c);
-  const long long budget = static_cast<long long>(std::ceil(s.hold_time / m.dt()));
-  for (long long k = 0; k < budget; ++k) {
-    m.cycle();
-    ++o.cycles;
-    check_finite(m);
-    if (m.unbalanced_ratio() < s.equilibrium_tolerance && m.max_speed() < s.velocity_tolerance) {
-      o.settled = true;
-      break;
-    }
-    if (k % kCheckEvery == 0) {
-      check_energy(m, energy_floor);
-      if (largest_move(m, c, start) > collapse_drift) break;
-    }
-  }
-  o.drift = largest_move(m, c, start);
-  o.time = o.cycles * m.dt();
-  return o;
-}
-
-// Fraction of the increment travelled after a fraction u of the move time: constant speed with
-// half-cosine ramps of length r at both ends.
-double travelled(double u, double r) {
-  if (r <= 0) return u;
-  const double vp = 1 / (1 - r);  // plateau speed, increments per move time
-  auto up = [&](double x) { return vp * (x / 2 - r / (2 * M_PI) * std::sin(M_PI * x / r)); };
-  if (u <= r) return up(u);
-  if (u >= 1 - r) return 1 - up(1 - u);
-  return vp * (r / 2 + (u - r));
-}
 
 }  // namespace
 
@@ -127,8 +65,15 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   for (const Interface& J : joints) r.joints.push_back({J.i, J.j, J.a, J.b});
 
   DemModel m(c, s);
-  const double collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
-  const double energy_floor = 1e-9 * r.total_weight * scene_size(c);
+  dem::Limits lim;
+  // A block that travels 2% of the scene during a hold, with the supports at rest, has left its
+  // equilibrium for good. Smaller drifts are not evidence: a hinge that jumps to another joint
+  // snaps the pointed arch by 4 mm (0.2% of its size) to a new equilibrium near d = 0.09 m.
+  lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
+  lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
+  // The kinetic energy a move may carry per metre of d: the target of the speed servo.
+  const double ke_per_d = s.kinetic_ratio * r.total_weight * support_travel_per_d(c);
+  const double bracket = s.bracket_fraction * s.step;
   r.settings = {{"young_modulus", s.young_modulus},
                 {"poisson", s.poisson},
                 {"kn", m.kn()},
@@ -142,18 +87,26 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
                 {"equilibrium_tolerance", s.equilibrium_tolerance},
                 {"velocity_tolerance", s.velocity_tolerance},
                 {"hold_time", s.hold_time},
+                {"kinetic_ratio", s.kinetic_ratio},
                 {"move_time", s.move_time},
                 {"ramp_fraction", s.ramp_fraction},
-                {"collapse_drift", collapse_drift},
+                {"collapse_drift", lim.collapse_drift},
+                {"bracket_fraction", s.bracket_fraction},
                 {"open_gap", s.open_gap >= 0 ? s.open_gap : c.prd.contact_tolerance},
                 {"step", s.step},
                 {"max_steps", s.max_steps}};
 
-  auto emit = [&](int index, const HoldOutcome& h, long long cycles) {
-    StepRecord rec = m.record(joints);
+  // Corner gaps of the settled initial configuration: hinges are measured from them.
+  std::vector<double> settled_gaps;
+  auto emit = [&](int index, const HoldOutcome& h, long long cycles, long long move_cycles, bool bracketing, double lag) {
+    StepRecord rec = m.record(joints, settled_gaps);
     rec.index = index;
-    rec.extra["settled"] = h.settled;
+    rec.extra["settled"] = h.end == HoldEnd::equilibrium;
+    rec.extra["hold_end"] = dem::hold_end_name(h.end);
+    if (bracketing) rec.extra["bracket"] = true;
     rec.extra["cycles"] = cycles;
+    rec.extra["move_cycles"] = move_cycles;
+    rec.extra["lag"] = lag;
     rec.extra["hold_time"] = h.time;
     rec.extra["unbalanced_ratio"] = m.unbalanced_ratio();
     rec.extra["max_speed"] = m.max_speed();
@@ -172,53 +125,113 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
       io_cpu_s += thread_cpu_s() - a_cpu;
     }
   };
-  auto fail = [&](const std::string& msg) {
-    r.stopped = "error";
-    r.message = msg;
+
+  // The support speed at the end of the last move: the next move starts at a quarter of it, so
+  // the servo need not find the structure's pace again from the floor every increment.
+  double speed = 0;
+  auto attempt = [&](double d0, double d1) {
+    Attempt a;
+    const long long c0 = m.cycles();
+    const double ke_target = ke_per_d * (d1 - d0);
+    lim.ke_collapse = 10 * ke_target;
+    const std::vector<Vec2> before = dem::positions(m, c);
+    const dem::MoveOutcome mv = dem::move(m, s, d0, d1, ke_target, speed / 4, lim);
+    speed = mv.speed;
+    a.move_cycles = mv.cycles;
+    a.move_drift = dem::largest_move(m, c, before);
+    m.set_support_parameter(d1);
+    a.hold = dem::hold(m, c, s, lim);
+    a.cycles = m.cycles() - c0;
+    return a;
   };
 
   try {
+    // Stage 1: the initial configuration settles under gravity. Only a drift ends it as a
+    // collapse: the kinetic energy of the first settling is no sign of one.
     m.set_support_parameter(0);
-    const HoldOutcome h0 = hold(m, c, s, collapse_drift, energy_floor);
-    if (h0.settled) {
-      r.stable_steps = 0;
-      r.capacity = 0;
-    }
-    emit(0, h0, h0.cycles);
-    if (!h0.settled) {
-      r.collapsed = h0.drift > collapse_drift;
-      r.stopped = r.collapsed ? "collapse" : "error";
-      if (!r.collapsed) r.message = "the initial configuration did not settle within the hold time";
+    lim.ke_collapse = INFINITY;
+    const HoldOutcome h0 = dem::hold(m, c, s, lim);
+    if (h0.end == HoldEnd::equilibrium) r.capacity = 0;
+    emit(0, h0, h0.cycles, 0, false, 0.0);  // absolute gaps: the settled crack pattern
+    if (h0.end != HoldEnd::equilibrium) {
+      r.collapsed = h0.end == HoldEnd::collapse;
+      r.stopped = r.collapsed ? "collapse" : "undecided";
+      if (!r.collapsed)
+        r.message = "the initial configuration neither settled nor ran away within the hold cap (" + std::to_string(s.hold_time) +
+                    " s): no capacity";
     } else {
-      const long long n_move = std::max<long long>(1, static_cast<long long>(std::ceil(s.move_time / m.dt())));
+      settled_gaps = m.corner_gaps(joints);
+      // Stage 2: increments, each a move and a hold, from the last equilibrium.
+      DemSnapshot last_eq = m.save();
+      double d_eq = 0;
+      int index = 1;
+      Attempt failed;
+      double d_fail = 0;
+      bool failure = false;
       for (int k = 1; k <= s.max_steps; ++k) {
-        const double d0 = (k - 1) * s.step;
-        const long long c0 = m.cycles();
-        for (long long i = 1; i <= n_move; ++i) {
-          m.set_support_parameter(d0 + s.step * travelled(static_cast<double>(i) / static_cast<double>(n_move), s.ramp_fraction));
-          m.cycle();
-          check_finite(m);
-          if (i % kCheckEvery == 0) check_energy(m, energy_floor);
-        }
-        m.set_support_parameter(k * s.step);
-        const HoldOutcome h = hold(m, c, s, collapse_drift, energy_floor);
-        if (h.settled) {
-          r.capacity = k * s.step;
-          ++r.stable_steps;
-        }
-        emit(k, h, m.cycles() - c0);
-        if (!h.settled && h.drift > collapse_drift) {
-          r.collapsed = true;
-          r.stopped = "collapse";
+        const double d1 = k * s.step;
+        const Attempt a = attempt(d_eq, d1);
+        if (a.hold.end != HoldEnd::equilibrium) {
+          failed = a;
+          d_fail = d1;
+          failure = true;
           break;
         }
+        emit(index++, a.hold, a.cycles, a.move_cycles, false, a.lag());
+        r.capacity = d_eq = d1;
+        ++r.stable_steps;
+        last_eq = m.save();
       }
-      // Only now: the results handed out on the way say "running", so a run stopped from
-      // outside does not look finished.
-      if (!r.collapsed) r.stopped = "max_steps";
+      if (failure) {
+        // Stage 3: the collapse bracket. Back to the last equilibrium, halve the failed
+        // increment until the bracket is narrower than bracket_fraction x step. A trial that
+        // does not settle (collapse or undecided) moves the upper end; one that settles is a
+        // recorded equilibrium and moves the lower end.
+        nlohmann::ordered_json trials = nlohmann::ordered_json::array();
+        trials.push_back({{"d", d_fail}, {"end", dem::hold_end_name(failed.hold.end)}, {"cycles", failed.cycles}});
+        DemSnapshot failed_state = m.save();
+        while (bracket > 0 && d_fail - d_eq > bracket) {
+          m.restore(last_eq);
+          speed = 0;
+          const double mid = 0.5 * (d_eq + d_fail);
+          const Attempt a = attempt(d_eq, mid);
+          trials.push_back({{"d", mid}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}});
+          if (a.hold.end == HoldEnd::equilibrium) {
+            emit(index++, a.hold, a.cycles, a.move_cycles, true, a.lag());
+            r.capacity = d_eq = mid;
+            ++r.stable_steps;
+            last_eq = m.save();
+          } else {
+            failed = a;
+            d_fail = mid;
+            failed_state = m.save();
+          }
+        }
+        // The failed state nearest the capacity closes the record.
+        m.restore(failed_state);
+        emit(index++, failed.hold, failed.cycles, failed.move_cycles, bracket > 0, failed.lag());
+        r.extra["collapse_bracket"] = {{"equilibrium", d_eq}, {"failed", d_fail}, {"width", d_fail - d_eq}, {"trials", trials}};
+        // A collapse shown anywhere beyond the capacity makes the run a collapse; the bracket's
+        // upper end may still be a hold that had not decided when the cap came.
+        bool any_collapse = false;
+        for (const auto& t : trials) any_collapse = any_collapse || t["end"] == "collapse";
+        r.collapsed = any_collapse;
+        r.stopped = r.collapsed ? "collapse" : "undecided";
+        if (!r.collapsed) {
+          std::ostringstream msg;
+          msg << "the hold at d = " << d_fail << " m neither settled nor ran away within the hold cap (" << s.hold_time
+              << " s): the capacity " << d_eq << " m is the last equilibrium, not a located collapse";
+          r.message = msg.str();
+        }
+      } else {
+        // Only now: the results handed out on the way say "running", so a run stopped from
+        // outside does not look finished.
+        r.stopped = "max_steps";
+      }
     }
   } catch (const std::exception& e) {
-    fail(e.what());
+    r.stopped = "error";
+    r.message = e.what();
   }
   r.timing.cycles = m.cycles();
   r.timing.total_s = thread_cpu_s() - cpu0 - io_cpu_s;

@@ -282,7 +282,7 @@ Case parse_case(const std::string& text, const std::string& source) {
     const json& jd = doc["dem"];
     r.only(jd, "dem", {"young_modulus", "poisson", "friction_angle", "kn", "ks", "stiffness_reduction", "damping",
                        "timestep_factor", "equilibrium_tolerance", "velocity_tolerance", "hold_time",
-                       "move_time", "ramp_fraction", "collapse_drift"});
+                       "kinetic_ratio", "move_time", "ramp_fraction", "collapse_drift", "bracket_fraction"});
     DemOptions& d = c.dem;
     d.young_modulus = r.number(jd, "dem", "young_modulus", d.young_modulus);
     d.poisson = r.number(jd, "dem", "poisson", d.poisson);
@@ -295,7 +295,9 @@ Case parse_case(const std::string& text, const std::string& source) {
     d.equilibrium_tolerance = r.number(jd, "dem", "equilibrium_tolerance", d.equilibrium_tolerance);
     d.velocity_tolerance = r.number(jd, "dem", "velocity_tolerance", d.velocity_tolerance);
     d.hold_time = r.number(jd, "dem", "hold_time", d.hold_time);
+    d.kinetic_ratio = r.number(jd, "dem", "kinetic_ratio", d.kinetic_ratio);
     d.move_time = r.number(jd, "dem", "move_time", d.move_time);
+    d.bracket_fraction = r.number(jd, "dem", "bracket_fraction", d.bracket_fraction);
     d.ramp_fraction = r.number(jd, "dem", "ramp_fraction", d.ramp_fraction);
     d.collapse_drift = r.number(jd, "dem", "collapse_drift", d.collapse_drift);
     if (!(d.young_modulus > 0)) r.fail("dem", "field 'young_modulus' must be positive");
@@ -309,7 +311,9 @@ Case parse_case(const std::string& text, const std::string& source) {
     if (!(d.equilibrium_tolerance > 0)) r.fail("dem", "field 'equilibrium_tolerance' must be positive");
     if (!(d.velocity_tolerance > 0)) r.fail("dem", "field 'velocity_tolerance' must be positive");
     if (!(d.hold_time > 0)) r.fail("dem", "field 'hold_time' must be positive");
-    if (!(d.move_time > 0)) r.fail("dem", "field 'move_time' must be positive");
+    if (!(d.move_time >= 0)) r.fail("dem", "field 'move_time' must be >= 0 (0: the support speed servoed on the kinetic energy)");
+    if (!(d.kinetic_ratio > 0)) r.fail("dem", "field 'kinetic_ratio' must be positive");
+    if (!(d.bracket_fraction >= 0 && d.bracket_fraction < 1)) r.fail("dem", "field 'bracket_fraction' must lie in [0, 1)");
     if (!(d.ramp_fraction >= 0 && d.ramp_fraction <= 0.5)) r.fail("dem", "field 'ramp_fraction' must lie in [0, 0.5]");
     if (!(d.collapse_drift >= 0)) r.fail("dem", "field 'collapse_drift' must be >= 0 (0: 2% of the scene size)");
   }
@@ -395,9 +399,11 @@ std::string case_to_json(const Case& c) {
               {"equilibrium_tolerance", c.dem.equilibrium_tolerance},
               {"velocity_tolerance", c.dem.velocity_tolerance},
               {"hold_time", c.dem.hold_time},
+              {"kinetic_ratio", c.dem.kinetic_ratio},
               {"move_time", c.dem.move_time},
               {"ramp_fraction", c.dem.ramp_fraction},
-              {"collapse_drift", c.dem.collapse_drift}};
+              {"collapse_drift", c.dem.collapse_drift},
+              {"bracket_fraction", c.dem.bracket_fraction}};
   if (c.dem.kn) dem["kn"] = *c.dem.kn;
   if (c.dem.ks) dem["ks"] = *c.dem.ks;
   doc["dem"] = dem;

@@ -72,16 +72,20 @@ struct DemOptions {
   std::optional<double> ks;             // shear joint stiffness, Pa/m (default G / h_block)
   double stiffness_reduction = 1.0;     // kn and ks are divided by this (the paper used 10)
   double damping = 0.8;                 // local non-viscous damping coefficient, 0..1
-  double timestep_factor = 0.2;         // safety factor on the critical time step
+  double timestep_factor = 0.8;         // safety factor on the critical time step
   double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight
   double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
-  double hold_time = 3.0;               // model time budget per hold, s
-  // The loading protocol (dem/README.md): model time to travel one increment (s), the share of
-  // it spent on half-cosine speed ramps at each end, and the drift during a hold that counts as
-  // collapse (m; 0 means 2% of the scene size).
-  double move_time = 0.2;
+  double hold_time = 30.0;              // model-time cap of one hold, s (dem/README.md)
+  // The loading protocol (dem/README.md): the support speed is servoed to keep the kinetic energy
+  // below kinetic_ratio x total weight x increment; move_time > 0 (s) moves at constant speed over
+  // that time instead, with half-cosine speed ramps over ramp_fraction of it at each end. The
+  // drift during a hold that counts as collapse (m; 0 means 2% of the scene size). A failed
+  // increment is bisected down to bracket_fraction x step (0: not bisected).
+  double kinetic_ratio = 1e-3;
+  double move_time = 0.0;
   double ramp_fraction = 0.25;
   double collapse_drift = 0.0;
+  double bracket_fraction = 0.01;
 };
 
 struct Case {

@@ -27,7 +27,6 @@ Case arch_case() {
   Case c = circular_arch(p);
   c.dem.friction_angle = 35;
   c.dem.stiffness_reduction = 10;
-  c.dem.hold_time = 1.0;
   return c;
 }
 

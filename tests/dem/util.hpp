@@ -44,15 +44,12 @@ inline Case tilt_case(double b, double h, double phi_deg) {
   c.motion.step = M_PI / 180;
   c.motion.max_steps = 80;
   c.dem.friction_angle = phi_deg;
-  c.dem.hold_time = 1.0;
   return c;
 }
 
-// Its DEM run. One degree per second: the support starts and stops abruptly (constant
-// velocity), and a faster tilt would throw a block that is close to toppling over its corner.
+// Its DEM run at the default protocol (the support speed servoed on the kinetic energy).
 inline RunResult tilt_run(const Case& c, const std::function<void(const RunResult&)>& on_step = {}) {
   DemSettings s = DemSettings::from_case(c);
-  s.move_time = 1.0;
   s.collapse_drift = 0.02;  // m; the blocks are 0.2-0.4 m
   return dem_run(c, s, on_step);
 }

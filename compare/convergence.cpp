@@ -1,0 +1,119 @@
+#include "convergence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "format.hpp"
+#include "report.hpp"
+
+namespace masonry {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+bool finished(const RunResult& r) { return r.stopped == "collapse" || r.stopped == "max_steps"; }
+
+std::string pct(double x) { return fmt::number(100 * x, "%+.2f%%", 100 * x); }
+
+ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
+
+}  // namespace
+
+ConvergenceVerdict judge(const Convergence& c) {
+  ConvergenceVerdict v;
+  if (c.entries.empty()) {
+    v.problems.push_back("no run");
+    return v;
+  }
+  v.complete = true;
+  double lo = INFINITY, hi = -INFINITY;
+  for (const ConvergenceEntry& e : c.entries) {
+    if (!finished(e.run)) {
+      v.complete = false;
+      v.problems.push_back(e.name + " (" + e.what + ") stopped with " + e.run.stopped + (e.run.message.empty() ? "" : ": " + e.run.message));
+      continue;
+    }
+    lo = std::min(lo, e.run.capacity);
+    hi = std::max(hi, e.run.capacity);
+  }
+  const double base = c.entries.front().run.capacity;
+  if (v.complete && base > 0) v.spread = (hi - lo) / base;
+  if (c.prd_capacity && *c.prd_capacity > 0 && finished(c.entries.front().run)) v.prd_error = (base - *c.prd_capacity) / *c.prd_capacity;
+  if (v.complete && !(v.spread <= c.spread_limit))
+    v.problems.push_back("the capacities spread by " + fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) + " of the default's, more than " +
+                         fmt::g(100 * c.spread_limit) + "%");
+  if (c.prd_capacity && !(std::abs(v.prd_error) <= c.prd_limit))
+    v.problems.push_back("the default's capacity differs from PRD's by " + pct(v.prd_error) + ", more than " + fmt::g(100 * c.prd_limit) + "%");
+  v.ok = v.problems.empty();
+  return v;
+}
+
+ojson convergence_json(const Convergence& c) {
+  const ConvergenceVerdict v = judge(c);
+  ojson j;
+  j["format"] = "masonry-dem-convergence/1";
+  j["units"] = "m for capacities and d, s for times";
+  j["case"] = c.case_name;
+  j["prd_capacity"] = c.prd_capacity ? ojson(*c.prd_capacity) : ojson(nullptr);
+  j["spread_limit"] = c.spread_limit;
+  j["prd_limit"] = c.prd_limit;
+  j["spread"] = num(v.spread);
+  j["prd_error"] = num(v.prd_error);
+  j["ok"] = v.ok;
+  j["problems"] = v.problems;
+  ojson runs = ojson::array();
+  const double base = c.entries.empty() ? NAN : c.entries.front().run.capacity;
+  for (const ConvergenceEntry& e : c.entries) {
+    ojson r;
+    r["name"] = e.name;
+    r["what"] = e.what;
+    r["stopped"] = e.run.stopped;
+    r["capacity"] = finished(e.run) ? ojson(e.run.capacity) : ojson(nullptr);
+    r["against_default"] = finished(e.run) && base > 0 ? num((e.run.capacity - base) / base) : ojson(nullptr);
+    r["against_prd"] = finished(e.run) && c.prd_capacity ? num((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : ojson(nullptr);
+    r["bracket_width"] = e.run.extra.contains("collapse_bracket") ? e.run.extra["collapse_bracket"]["width"] : ojson(nullptr);
+    r["cpu_s"] = e.run.timing.total_s;
+    r["cycles"] = e.run.timing.cycles;
+    r["message"] = e.run.message;
+    runs.push_back(r);
+  }
+  j["runs"] = runs;
+  return j;
+}
+
+std::string convergence_markdown(const Convergence& c) {
+  const ConvergenceVerdict v = judge(c);
+  std::ostringstream o;
+  o << "# DEM convergence: " << md_escape(c.case_name) << "\n\n";
+  o << "The same case at the default DEM settings and at settings that must not change a quasi-static answer. "
+       "Capacity: the last equilibrium before the collapse, bracketed (dem/README.md).\n\n";
+  o << "| run | what differs | stopped | capacity (m) | against default | against PRD | bracket (mm) | CPU (s) | cycles |\n";
+  o << "|---|---|---|---|---|---|---|---|---|\n";
+  const double base = c.entries.empty() ? NAN : c.entries.front().run.capacity;
+  for (const ConvergenceEntry& e : c.entries) {
+    const bool ok = finished(e.run);
+    const double width = e.run.extra.contains("collapse_bracket") ? e.run.extra["collapse_bracket"]["width"].get<double>() : NAN;
+    o << "| " << md_escape(e.name) << " | " << md_escape(e.what) << " | " << e.run.stopped << " | "
+      << (ok ? fmt::number(e.run.capacity, "%.4f", e.run.capacity) : "n/a") << " | "
+      << (ok && base > 0 ? pct((e.run.capacity - base) / base) : "n/a") << " | "
+      << (ok && c.prd_capacity ? pct((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : "n/a") << " | "
+      << fmt::number(1000 * width, "%.2f", 1000 * width) << " | " << fmt::number(e.run.timing.total_s, "%.1f", e.run.timing.total_s)
+      << " | " << e.run.timing.cycles << " |\n";
+  }
+  o << "\nPRD capacity: " << (c.prd_capacity ? fmt::number(*c.prd_capacity, "%.4f m", *c.prd_capacity) : std::string("not run")) << ".\n\n";
+  o << "Spread (largest minus smallest capacity, over the default's): "
+    << (std::isfinite(v.spread) ? fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) : std::string("n/a")) << " (limit "
+    << fmt::g(100 * c.spread_limit) << "%); default against PRD: " << pct(v.prd_error) << " (limit " << fmt::g(100 * c.prd_limit)
+    << "%).\n\n";
+  if (v.ok)
+    o << "**Converged**: every run located its collapse and the capacities agree within the limits.\n";
+  else {
+    o << "**Not shown converged**:\n\n";
+    for (const std::string& p : v.problems) o << "- " << md_escape(p) << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace masonry

@@ -1,0 +1,40 @@
+// The spread of a DEM convergence study (dem/convergence.hpp): the capacity at each setting that
+// must not matter against the default's, the spread across them, and the default against PRD.
+// Reads RunResults only; writes convergence.json and convergence.md.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "results.hpp"
+
+namespace masonry {
+
+struct ConvergenceEntry {
+  std::string name, what;  // the variant
+  RunResult run;
+};
+
+struct Convergence {
+  std::string case_name;
+  std::vector<ConvergenceEntry> entries;  // the default first
+  std::optional<double> prd_capacity;     // m
+  double spread_limit = 0.02;             // (max - min) / default capacity
+  double prd_limit = 0.03;                // |default - PRD| / PRD
+};
+
+struct ConvergenceVerdict {
+  bool complete = false;   // every run ended in a located collapse or max_steps
+  double spread = NAN;     // (max - min) / default over the runs, NaN when a run failed
+  double prd_error = NAN;  // (default - PRD) / PRD
+  bool ok = false;         // complete, spread and PRD error within their limits
+  std::vector<std::string> problems;  // one sentence each, empty when ok
+};
+
+ConvergenceVerdict judge(const Convergence& c);
+nlohmann::ordered_json convergence_json(const Convergence& c);
+std::string convergence_markdown(const Convergence& c);
+
+}  // namespace masonry

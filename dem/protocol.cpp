@@ -1,0 +1,167 @@
+#include "protocol.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace masonry::dem {
+
+namespace {
+
+// Cycles between the cheap whole-model checks (energy budget, drift): a blow-up multiplies the
+// energy many times over within this many cycles, and a collapse drifts slowly against it.
+constexpr long long kCheckEvery = 64;
+// The kinetic-energy trend of a hold is read over windows that double in length (1024 cycles,
+// then 2048, 4096, ...): a runaway's energy grows from each window to the next, however slowly
+// it started, while a structure settling towards equilibrium, however slowly, loses energy
+// through damping over any span longer than its transient, and the doubling windows outgrow
+// every transient. Three rises in a row, above the threshold, make a collapse.
+constexpr long long kFirstWindow = 1024;
+constexpr int kRisingWindows = 3;
+
+// A state that is no longer finite stops the run before anything is recorded (the sum of the
+// kinetic energies carries a NaN or infinity from any block).
+void check_finite(const DemModel& m) {
+  if (!std::isfinite(m.kinetic_energy()) || !std::isfinite(m.unbalanced_ratio())) {
+    std::ostringstream msg;
+    msg << "dem: the integration produced a non-finite state at t = " << m.time() << " s (cycle " << m.cycles()
+        << "); refusing to record it";
+    throw std::runtime_error(msg.str());
+  }
+}
+
+// Energy balance: kinetic + spring energy + dissipation = work of gravity, the loads and the
+// moving supports, so the kinetic energy can never exceed that input. The explicit scheme's own
+// error is a fraction of it at any stable step (tests/dem/energy_test.cpp: below half at the
+// stability limit); an unstable integration grows the kinetic energy geometrically and crosses
+// ten times the input (plus a floor far below any physical energy of the scene) within a few
+// checks.
+void check_energy(const DemModel& m, double floor) {
+  check_finite(m);
+  const double input = m.energy_input();
+  const double ke = m.kinetic_energy();
+  if (ke > 10 * std::max(input, 0.0) + floor) {
+    std::ostringstream msg;
+    msg << "dem: the integration blew up at t = " << m.time() << " s (cycle " << m.cycles() << "): kinetic energy " << ke
+        << " J exceeds the energy put in by gravity, loads and supports (" << input
+        << " J); time step too close to the stability limit for these stiffnesses and masses";
+    throw std::runtime_error(msg.str());
+  }
+}
+
+// Fraction of the increment travelled after a fraction u of the move time: constant speed with
+// half-cosine ramps of length r at both ends.
+double travelled(double u, double r) {
+  if (r <= 0) return u;
+  const double vp = 1 / (1 - r);  // plateau speed, increments per move time
+  auto up = [&](double x) { return vp * (x / 2 - r / (2 * M_PI) * std::sin(M_PI * x / r)); };
+  if (u <= r) return up(u);
+  if (u >= 1 - r) return 1 - up(1 - u);
+  return vp * (r / 2 + (u - r));
+}
+
+}  // namespace
+
+std::vector<Vec2> positions(const DemModel& m, const Case& c) {
+  std::vector<Vec2> p(c.blocks.size());
+  for (size_t b = 0; b < c.blocks.size(); ++b) p[b] = m.block(static_cast<int>(b)).position;
+  return p;
+}
+
+double largest_move(const DemModel& m, const Case& c, const std::vector<Vec2>& from) {
+  double d = 0;
+  for (size_t b = 0; b < c.blocks.size(); ++b) {
+    if (c.blocks[b].support) continue;
+    d = std::max(d, (m.block(static_cast<int>(b)).position - from[b]).norm());
+  }
+  return d;
+}
+
+const char* hold_end_name(HoldEnd e) {
+  switch (e) {
+    case HoldEnd::equilibrium: return "equilibrium";
+    case HoldEnd::collapse: return "collapse";
+    case HoldEnd::undecided: return "undecided";
+  }
+  return "?";
+}
+
+HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim) {
+  HoldOutcome o;
+  const std::vector<Vec2> start = positions(m, c);
+  const long long budget = static_cast<long long>(std::ceil(s.hold_time / m.dt()));
+  double window_peak = 0, last_peak = INFINITY;
+  long long window_end = kFirstWindow;
+  int rising = 0;
+  for (long long k = 0; k < budget; ++k) {
+    m.cycle();
+    ++o.cycles;
+    check_finite(m);
+    if (m.unbalanced_ratio() < s.equilibrium_tolerance && m.max_speed() < s.velocity_tolerance) {
+      o.end = HoldEnd::equilibrium;
+      break;
+    }
+    if (k % kCheckEvery == 0) {
+      check_energy(m, lim.energy_floor);
+      if (largest_move(m, c, start) > lim.collapse_drift) {
+        o.end = HoldEnd::collapse;
+        break;
+      }
+    }
+    window_peak = std::max(window_peak, m.kinetic_energy());
+    if (k + 1 == window_end) {
+      rising = window_peak > lim.ke_collapse && window_peak > last_peak ? rising + 1 : 0;
+      last_peak = window_peak;
+      window_peak = 0;
+      window_end *= 2;
+      if (rising >= kRisingWindows) {
+        o.end = HoldEnd::collapse;
+        break;
+      }
+    }
+  }
+  o.drift = largest_move(m, c, start);
+  o.time = static_cast<double>(o.cycles) * m.dt();
+  return o;
+}
+
+MoveOutcome move(DemModel& m, const DemSettings& s, double d0, double d1, double ke_target, double start_speed,
+                 const Limits& lim) {
+  MoveOutcome o;
+  const double dt = m.dt();
+  if (s.move_time > 0) {
+    const long long n = std::max<long long>(1, static_cast<long long>(std::ceil(s.move_time / dt)));
+    for (long long i = 1; i <= n; ++i) {
+      m.set_support_parameter(d0 + (d1 - d0) * travelled(static_cast<double>(i) / static_cast<double>(n), s.ramp_fraction));
+      m.cycle();
+      check_finite(m);
+      if (i % kCheckEvery == 0) check_energy(m, lim.energy_floor);
+    }
+    o.cycles = n;
+    o.speed = (d1 - d0) / s.move_time;
+    return o;
+  }
+  // The servo: the speed follows the structure's kinetic energy, so a stiff, light structure is
+  // loaded fast and a tall, slow one slowly, each in the quasi-static regime the target sets. The
+  // floor bounds the move's length by the hold cap. The supports also brake at the servo's own
+  // rate towards the end, so they stop without a shock: a block near its friction limit on a
+  // support that stops at once slips (the tilting block slid 1.5 degrees early).
+  const double floor = (d1 - d0) / s.hold_time;
+  constexpr double kUp = 1.002, kDown = 0.98;
+  double v = std::max(start_speed, floor), d = d0;
+  while (d < d1) {
+    d = std::min(d1, d + v * dt);
+    m.set_support_parameter(d);
+    m.cycle();
+    ++o.cycles;
+    check_finite(m);
+    if (o.cycles % kCheckEvery == 0) check_energy(m, lim.energy_floor);
+    // Braking from v at kDown per cycle travels v dt / (1 - kDown).
+    const bool brake = d1 - d < v * dt / (1 - kDown);
+    v = !brake && m.kinetic_energy() < ke_target ? v * kUp : std::max(floor, v * kDown);
+  }
+  o.speed = v;
+  return o;
+}
+
+}  // namespace masonry::dem

@@ -1,0 +1,56 @@
+// The stages of the DEM's quasi-static loading protocol (dem/README.md, "Protocol"): the hold,
+// which cycles with the supports still until equilibrium or evidence of collapse, and the move,
+// which carries the supports from one path parameter to the next at a speed the structure's
+// kinetic energy allows. Internal to dem/: dem_run strings them together.
+#pragma once
+
+#include <vector>
+
+#include "dem.hpp"
+
+namespace masonry::dem {
+
+enum class HoldEnd {
+  equilibrium,  // unbalanced-force ratio and block speeds below their tolerances
+  collapse,     // a block drifted past collapse_drift, or the kinetic energy kept growing
+  undecided,    // the hold cap came first: neither settled nor ran away
+};
+const char* hold_end_name(HoldEnd e);
+
+// What the stages need besides the model and the settings.
+struct Limits {
+  double collapse_drift = 0;  // m
+  double energy_floor = 0;    // J, floor of the blow-up guard
+  // J: kinetic energy above which, growing over consecutive windows of a hold, the structure is
+  // running away (infinite: only the drift decides, as for the settling at d = 0).
+  double ke_collapse = 0;
+};
+
+struct HoldOutcome {
+  HoldEnd end = HoldEnd::undecided;
+  double drift = 0;  // m, largest block displacement since the hold began
+  long long cycles = 0;
+  double time = 0;   // s of model time
+};
+
+// Free blocks' centroids, and the largest distance a free block has moved from them, m.
+std::vector<Vec2> positions(const DemModel& m, const Case& c);
+double largest_move(const DemModel& m, const Case& c, const std::vector<Vec2>& from);
+
+// Cycles with the supports where they are until one of the three ends. Throws
+// std::runtime_error when the state turns non-finite or the energy balance is broken.
+HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim);
+
+struct MoveOutcome {
+  long long cycles = 0;
+  double speed = 0;  // the support speed (of d, m/s) at the end of the move
+};
+
+// Carries the supports from path parameter d0 to d1. Servoed (move_time 0): the speed grows by
+// 0.2% per cycle while the kinetic energy is below `ke_target` and shrinks by 2% per cycle while
+// above and while braking to stop at d1, starting from `start_speed`, never below
+// (d1 - d0) / hold_time; with move_time > 0, the constant-speed move with half-cosine ramps.
+MoveOutcome move(DemModel& m, const DemSettings& s, double d0, double d1, double ke_target, double start_speed,
+                 const Limits& lim);
+
+}  // namespace masonry::dem

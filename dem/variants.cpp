@@ -1,0 +1,82 @@
+#include "variants.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+namespace masonry {
+
+namespace {
+
+std::string num(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+}  // namespace
+
+std::vector<DemVariant> convergence_variants(const DemSettings& base) {
+  std::vector<DemVariant> v;
+  v.push_back({"default", "the case's settings", base});
+  DemVariant slow{"slower-loading", "", base};
+  if (base.move_time > 0) {
+    slow.settings.move_time = 2 * base.move_time;
+    slow.what = "move time x2 (" + num(slow.settings.move_time) + " s)";
+  } else {
+    // The servo holds the kinetic energy near its target, so the support speed goes as its
+    // square root: a quarter of the energy is half the speed.
+    slow.settings.kinetic_ratio = base.kinetic_ratio / 4;
+    slow.what = "loading twice as slow (kinetic ratio / 4 = " + num(slow.settings.kinetic_ratio) + ")";
+  }
+  v.push_back(slow);
+  DemVariant half{"half-step", "half the increment (" + num(base.step / 2) + " m)", base};
+  half.settings.step = base.step / 2;
+  half.settings.max_steps = 2 * base.max_steps;
+  v.push_back(half);
+  DemVariant damp{"damping", "", base};
+  damp.settings.damping = std::abs(base.damping - 0.8) < 1e-12 ? 0.6 : 0.8;
+  damp.what = "damping " + num(damp.settings.damping);
+  v.push_back(damp);
+  DemVariant dt{"half-timestep", "time-step factor / 2 (" + num(base.timestep_factor / 2) + ")", base};
+  dt.settings.timestep_factor = base.timestep_factor / 2;
+  v.push_back(dt);
+  DemVariant stiff{"stiffer-joints", "joints x3 stiffer (kn, ks)", base};
+  stiff.settings.stiffness_reduction = base.stiffness_reduction / 3;
+  v.push_back(stiff);
+  DemVariant soft{"softer-joints", "joints x3 softer (kn, ks)", base};
+  soft.settings.stiffness_reduction = base.stiffness_reduction * 3;
+  v.push_back(soft);
+  if (base.friction_angle < 90) {
+    DemVariant fr{"more-friction", "", base};
+    fr.settings.friction_angle = std::min(90.0, base.friction_angle + 10);
+    fr.what = "friction angle " + num(fr.settings.friction_angle) + " deg";
+    v.push_back(fr);
+  }
+  return v;
+}
+
+std::vector<RunResult> run_variants(const Case& c, const std::vector<DemVariant>& variants, int jobs,
+                                    const std::function<void(size_t, const RunResult&)>& on_step,
+                                    const std::function<void(size_t, const RunResult&)>& on_done) {
+  std::vector<RunResult> out(variants.size());
+  std::atomic<size_t> next{0};
+  auto worker = [&]() {
+    for (size_t i = next++; i < variants.size(); i = next++) {
+      out[i] = dem_run(c, variants[i].settings, [&](const RunResult& part) {
+        if (on_step) on_step(i, part);
+      });
+      if (on_done) on_done(i, out[i]);
+    }
+  };
+  const int n = std::max(1, std::min<int>(jobs, static_cast<int>(variants.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < n; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return out;
+}
+
+}  // namespace masonry
