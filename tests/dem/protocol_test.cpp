@@ -1,0 +1,231 @@
+// The quasi-static protocol (dem/README.md, "Protocol"): holds end on equilibrium, on evidence
+// of collapse, or undecided at the cap (a creeping structure is never called a collapse); the
+// collapse is bracketed from the last equilibrium, so the capacity does not move with the
+// increment; hinges are measured from the settled state; a restored state replays exactly; and
+// a small arch gives one capacity across the settings that must not matter.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common.hpp"
+#include "convergence.hpp"
+#include "dem.hpp"
+#include "generators.hpp"
+#include "prd.hpp"
+#include "protocol.hpp"
+#include "util.hpp"
+#include "variants.hpp"
+
+namespace {
+
+using namespace masonry;
+
+constexpr double kDeg = M_PI / 180;
+
+Vec2 turned(const Vec2& p, double a) { return Vec2(std::cos(a) * p.x() - std::sin(a) * p.y(), std::sin(a) * p.x() + std::cos(a) * p.y()); }
+
+// A block resting on a fixed slab inclined by `slope` (rad), with soft joints.
+Case incline_case(double slope, double phi_deg) {
+  Case c = test::slab_case();
+  Block& g = c.blocks[0];
+  for (Vec2& v : g.vertices) v = turned(v, slope);
+  Block b = test::rect("block", -0.1, 0.0, 0.1, 0.1, 2000, false);
+  for (Vec2& v : b.vertices) v = turned(v, slope);
+  c.blocks.push_back(b);
+  c.dem.friction_angle = phi_deg;
+  return c;
+}
+
+dem::Limits limits(double drift, double ke_collapse) {
+  dem::Limits l;
+  l.collapse_drift = drift;
+  l.energy_floor = 1e-9;
+  l.ke_collapse = ke_collapse;
+  return l;
+}
+
+// A block sliding down a slope steeper than its friction angle has no equilibrium: the hold
+// ends as a collapse (energy growing), long before the cap.
+TEST(DemHold, RunawayIsCollapse) {
+  const Case c = incline_case(20 * kDeg, 10);
+  DemSettings s = DemSettings::from_case(c);
+  DemModel m(c, s);
+  const dem::HoldOutcome h = dem::hold(m, c, s, limits(0.05, 1e-6));
+  EXPECT_EQ(h.end, dem::HoldEnd::collapse);
+  EXPECT_LT(h.time, 0.5 * s.hold_time);
+}
+
+// With damping 0.9999 a block on soft joints creeps down onto its 4 mm of elastic overlap, taking
+// many of its natural periods: the hold waits (the kinetic energy stays far below what a runaway
+// reaches, the threshold dem_run sets for a 1 cm increment) and ends in equilibrium; with a cap
+// too short for the creep, it is undecided, never a collapse.
+TEST(DemHold, CreepTowardsEquilibriumIsNotCollapse) {
+  Case c = incline_case(0.0, 35);
+  c.dem.kn = 1e6;
+  c.dem.ks = 4e5;
+  c.dem.damping = 0.9999;
+  DemSettings s = DemSettings::from_case(c);
+  const double W = 2000 * 0.2 * 0.1 * c.gravity, mass = W / c.gravity;
+  const double overlap = W / (1e6 * 0.2);                          // W / (kn A)
+  const double period = 2 * M_PI * std::sqrt(mass / (1e6 * 0.2));  // of the block on its bed
+  const double ke_collapse = 10 * s.kinetic_ratio * W * 0.01;
+  {
+    DemModel m(c, s);
+    const dem::HoldOutcome h = dem::hold(m, c, s, limits(0.05, ke_collapse));
+    EXPECT_EQ(h.end, dem::HoldEnd::equilibrium) << dem::hold_end_name(h.end) << " after " << h.time << " s";
+    EXPECT_GT(h.time, 10 * period);  // it did creep
+    EXPECT_NEAR(h.drift, overlap, 0.01 * overlap);
+  }
+  {
+    s.hold_time = 2 * period;
+    DemModel m(c, s);
+    const dem::HoldOutcome h = dem::hold(m, c, s, limits(0.05, ke_collapse));
+    EXPECT_EQ(h.end, dem::HoldEnd::undecided) << dem::hold_end_name(h.end);
+  }
+}
+
+// A run whose first settling cannot finish within the cap says so: undecided, no capacity.
+TEST(DemHold, UndecidedInitialStateIsNoCapacity) {
+  Case c = incline_case(0.0, 35);
+  c.dem.kn = 1e6;
+  c.dem.ks = 4e5;
+  c.dem.damping = 0.9999;
+  c.dem.hold_time = 0.2;
+  const RunResult r = dem_run(c, DemSettings::from_case(c));
+  EXPECT_EQ(r.stopped, "undecided");
+  EXPECT_EQ(r.stable_steps, 0);
+  EXPECT_NE(r.message.find("neither settled nor ran away"), std::string::npos) << r.message;
+}
+
+// Toppling at atan(b/h) is located within the bracket whatever the increment: 1 and 3 degrees
+// both give it within their bracket (1% of the increment) plus twice the equilibrium
+// tolerance's resolution of the tipping point (an unbalanced moment of 1e-4 W r, r the radius of
+// gyration, is 1e-4 r / (half the diagonal) rad of tilt past it).
+TEST(DemBracket, CapacityDoesNotMoveWithTheIncrement) {
+  const double b = 0.2, h = 0.4;
+  const double topple = std::atan(b / h);
+  const double resolution = 1e-4 * std::sqrt((b * b + h * h) / 12) / (0.5 * std::hypot(b, h));
+  double caps[2];
+  int k = 0;
+  for (const double step_deg : {1.0, 3.0}) {
+    Case c = test::tilt_case(b, h, 45);
+    // Stiff joints: the toe's elastic overlap turns the block by overlap / b before the heel
+    // lifts, 0.05 degrees at the test scenes' 1e8 Pa/m (tipping that much early), 0.0005 here.
+    c.dem.kn = 1e10;
+    c.dem.ks = 4e9;
+    c.motion.step = step_deg * kDeg;
+    c.motion.max_steps = static_cast<int>(40 / step_deg);
+    const RunResult r = test::tilt_run(c);
+    ASSERT_EQ(r.stopped, "collapse") << r.message;
+    std::printf("step %g deg: capacity %.4f deg, bracket %s\n", step_deg, r.capacity / kDeg, r.extra["collapse_bracket"].dump().c_str());
+    const double width = r.extra["collapse_bracket"]["width"].get<double>();
+    EXPECT_LE(width, c.dem.bracket_fraction * c.motion.step * (1 + 1e-9));
+    EXPECT_NEAR(r.capacity, topple, c.dem.bracket_fraction * c.motion.step + 2 * resolution) << "step " << step_deg;
+    // The record closes on the failed state just past the capacity, the equilibria before it.
+    EXPECT_FALSE(r.steps.back().extra.value("settled", true));
+    for (size_t i = 1; i + 1 < r.steps.size(); ++i) EXPECT_GT(r.steps[i].d, r.steps[i - 1].d);
+    caps[k++] = r.capacity;
+  }
+  EXPECT_NEAR(caps[0], caps[1], 0.03 * kDeg + 2 * resolution);
+}
+
+// The bracket goes back to a saved equilibrium: a restored model replays the same cycles bit for
+// bit.
+TEST(DemModelState, RestoreReplaysExactly) {
+  const Case c = test::tilt_case(0.2, 0.4, 35);
+  DemModel m(c, DemSettings::from_case(c));
+  m.set_support_parameter(0.01);
+  m.cycle(500);
+  const DemSnapshot snap = m.save();
+  m.cycle(700);
+  const DemBlockState a = m.block(1);
+  m.set_support_parameter(0.3);  // somewhere else entirely
+  m.cycle(300);
+  m.restore(snap);
+  m.cycle(700);
+  const DemBlockState b = m.block(1);
+  EXPECT_EQ(a.position, b.position);
+  EXPECT_EQ(a.angle, b.angle);
+  EXPECT_EQ(a.velocity, b.velocity);
+}
+
+// Two blocks side by side on the slab, the right one loaded at its far edge: its bed joint
+// compresses unevenly, it turns by about 0.01 rad, and the top of the vertical joint between the
+// two opens by some 2 mm, elastically. That gap is the settled state, shown at d = 0; moving the
+// slab sideways, which carries both blocks rigidly, opens no hinge.
+TEST(DemHinges, SettledGapsAreNotHinges) {
+  Case c = test::slab_case();
+  c.blocks.push_back(test::rect("left", -0.2, 0.0, 0.0, 0.2, 2000, false));
+  c.blocks.push_back(test::rect("right", 0.0, 0.0, 0.2, 0.2, 2000, false));
+  c.dem.kn = 1e7;
+  c.dem.ks = 4e6;
+  const double W = 2000 * 0.2 * 0.2 * c.gravity;
+  Load l;
+  l.block = 2;
+  l.force = Vec2(0, -3 * W);
+  l.point = Vec2(0.2, 0.2);
+  c.loads.push_back(l);
+  SupportMotion sm;
+  sm.block = 0;
+  sm.translation = Vec2(1, 0);
+  sm.about = Vec2(0, -0.05);
+  c.motion.supports.push_back(sm);
+  c.motion.step = 0.001;
+  c.motion.max_steps = 2;
+  const RunResult r = dem_run(c, DemSettings::from_case(c));
+  ASSERT_EQ(r.stopped, "max_steps") << r.message;
+  ASSERT_EQ(r.steps.size(), 3u);
+  // Settled: the top corner of the vertical joint stands open (and nothing else).
+  ASSERT_EQ(r.steps[0].open_corners.size(), 1u);
+  const OpenCorner& o = r.steps[0].open_corners[0];
+  EXPECT_EQ(r.joints[o.joint].i + r.joints[o.joint].j, 3);  // blocks 1 and 2
+  EXPECT_GT(o.gap, 100 * c.prd.contact_tolerance);
+  for (size_t k = 1; k < r.steps.size(); ++k) EXPECT_TRUE(r.steps[k].open_corners.empty()) << "d = " << r.steps[k].d;
+}
+
+// The 12-voussoir semicircular arch on a spreading support: one capacity across every setting
+// that must not matter (within 2%), and within 3% of PRD's.
+TEST(DemConvergence, SmallArchAgreesAcrossSettings) {
+  CircularArch p;
+  p.radius = 1.0;
+  p.thickness = 0.15;
+  p.embrace = M_PI;
+  p.voussoirs = 12;
+  p.step = 0.004;
+  p.max_steps = 200;
+  Case c = circular_arch(p);
+  c.dem.stiffness_reduction = 10;
+  const std::vector<DemVariant> variants = convergence_variants(DemSettings::from_case(c));
+  ASSERT_GE(variants.size(), 7u);
+  const std::vector<RunResult> runs = run_variants(c, variants, 2);
+  Convergence study;
+  study.case_name = c.name;
+  study.prd_capacity = prd_run(c, PrdSettings::from_case(c)).capacity;
+  for (size_t i = 0; i < variants.size(); ++i) {
+    std::printf("%-15s %-10s %.5f m, %.2f s\n", variants[i].name.c_str(), runs[i].stopped.c_str(), runs[i].capacity, runs[i].timing.total_s);
+    study.entries.push_back({variants[i].name, variants[i].what, runs[i]});
+  }
+  const ConvergenceVerdict v = judge(study);
+  for (const std::string& problem : v.problems) ADD_FAILURE() << problem;
+  EXPECT_TRUE(v.ok);
+  EXPECT_LE(v.spread, 0.02);
+}
+
+// `masonry dem --convergence`: the files, the verdict in the exit code.
+TEST(DemConvergence, CommandWritesTheStudy) {
+  test::Scratch d("dem-convergence");
+  const std::string cmd = std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --convergence --jobs 2 --out " +
+                          (d.path / "out").string() + " --quiet 2>/dev/null";
+  EXPECT_EQ(test::run(cmd), 0);
+  const nlohmann::json j = nlohmann::json::parse(test::read(d.path / "out" / "convergence.json"));
+  EXPECT_TRUE(j["ok"].get<bool>()) << j.dump(1);
+  EXPECT_GE(j["runs"].size(), 7u);
+  EXPECT_TRUE(std::filesystem::exists(d.path / "out" / "default" / "results.json"));
+  EXPECT_NE(test::read(d.path / "out" / "convergence.md").find("**Converged**"), std::string::npos);
+  // An impossible limit fails the gate.
+  EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --convergence --prd-limit 1e-9 --out " +
+                      (d.path / "out2").string() + " --quiet 2>/dev/null"),
+            1);
+}
+
+}  // namespace
