@@ -256,6 +256,22 @@ std::string report_markdown(const Report& r, const std::vector<Figure>& figures)
       << "\n\n";
     o << "### Hinges\n\nA hinge is a joint with exactly one open corner; listed as `block/block:corner` (the joint's two blocks and the corner, A or B, it turns about). "
       << (cmp.symmetric ? "The scene is symmetric, so a mirror image counts as a match." : "The scene is not symmetric.") << "\n\n";
+    // The crack pattern each run starts from: the DEM's elastic settling under gravity opens
+    // small gaps (tens of microns on tall piers) that are not hinges of the mechanism; its
+    // later open corners are measured from these gaps (dem/README.md, "Hinges").
+    o << "Joints open at d = 0, before any support motion (the settled crack pattern; a DEM's later hinges are measured from "
+         "its gaps there):\n\n";
+    for (const ReportRun& rr : r.runs) {
+      std::string list;
+      if (rr.run && !rr.run->steps.empty())
+        for (int j : rr.run->steps.front().cracked) {
+          if (j < 0 || j >= static_cast<int>(rr.run->joints.size())) continue;
+          const JointInfo& J = rr.run->joints[j];
+          list += (list.empty() ? "" : ", ") + c.blocks[J.i].id + "/" + c.blocks[J.j].id;
+        }
+      o << "- " << md_escape(rr.label) << ": " << (list.empty() ? std::string("none") : md_escape(list)) << "\n";
+    }
+    o << "\n";
     o << "| d (mm) | " << md_escape(cmp.a.label) << " | " << md_escape(cmp.b.label) << " | agree |\n|---:|---|---|---|\n";
     for (const HingeCheck& h : cmp.hinges)
       o << "| " << mm(h.d) << " | " << md_escape(hinge_list(h.a)) << " | " << md_escape(hinge_list(h.b)) << " | "
