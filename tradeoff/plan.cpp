@@ -47,18 +47,18 @@ const char* kFullPlan = R"({
   "dem": {
     "repeat": 1,
     "reference": {"motion.step": "x0.5", "dem.stiffness_reduction": 1, "dem.equilibrium_tolerance": "x0.1",
-                  "dem.hold_time": "x2", "dem.move_time": "x2"},
+                  "dem.kinetic_ratio": "x0.25"},
     "vary": {
       "motion.step": ["x0.5", "x2", "x5"],
       "dem.stiffness_reduction": [1, 3, 10, 30],
       "dem.timestep_factor": [0.1, 0.5, 1.0],
       "dem.damping": [0.6, 0.9],
       "dem.equilibrium_tolerance": ["x0.1", "x10"],
-      "dem.hold_time": ["x0.5", "x2"],
-      "dem.move_time": ["x0.5", "x2"]
+      "dem.kinetic_ratio": ["x0.25", "x4"],
+      "dem.bracket_fraction": [0.1]
     },
     "combined": [
-      {"label": "fast", "options": {"motion.step": "x2", "dem.move_time": "x0.5", "dem.equilibrium_tolerance": "x10"}}
+      {"label": "fast", "options": {"motion.step": "x2", "dem.kinetic_ratio": "x4", "dem.equilibrium_tolerance": "x10"}}
     ]
   }
 })";
@@ -73,7 +73,7 @@ const char* kQuickPlan = R"({
   "dem": {
     "repeat": 1,
     "reference": {"motion.step": "x0.5"},
-    "vary": {"motion.step": ["x2"], "dem.move_time": ["x0.5"], "dem.stiffness_reduction": ["x10"]}
+    "vary": {"motion.step": ["x2"], "dem.kinetic_ratio": ["x4"], "dem.stiffness_reduction": ["x10"]}
   }
 })";
 

@@ -11,24 +11,11 @@
 #include "dem.hpp"
 #include "generators.hpp"
 #include "prd.hpp"
+#include "util.hpp"
 
 namespace {
 
 using namespace masonry;
-
-Case arch_case() {
-  CircularArch p;
-  p.radius = 1.0;
-  p.thickness = 0.15;
-  p.embrace = M_PI;
-  p.voussoirs = 12;
-  p.step = 0.004;
-  p.max_steps = 200;
-  Case c = circular_arch(p);
-  c.dem.friction_angle = 35;
-  c.dem.stiffness_reduction = 10;
-  return c;
-}
 
 // Block pairs of the hinged joints (a joint with exactly one open corner) at the step whose d is
 // the capacity.
@@ -64,7 +51,7 @@ std::string show(const std::set<std::pair<int, int>>& h) {
 }
 
 TEST(DemArch, CapacityAndHingesMatchPrd) {
-  const Case c = arch_case();
+  const Case c = test::semicircular_arch_case();
   const DemSettings s = DemSettings::from_case(c);
   const RunResult dem = dem_run(c, s);
   std::printf("DEM: %s capacity %.4f m, %d stable steps, %lld cycles, %.2f s, dt %.3g s\n", dem.stopped.c_str(),

@@ -10,7 +10,6 @@
 #include "common.hpp"
 #include "convergence.hpp"
 #include "dem.hpp"
-#include "generators.hpp"
 #include "prd.hpp"
 #include "protocol.hpp"
 #include "util.hpp"
@@ -186,15 +185,7 @@ TEST(DemHinges, SettledGapsAreNotHinges) {
 // The 12-voussoir semicircular arch on a spreading support: one capacity across every setting
 // that must not matter (within 2%), and within 3% of PRD's.
 TEST(DemConvergence, SmallArchAgreesAcrossSettings) {
-  CircularArch p;
-  p.radius = 1.0;
-  p.thickness = 0.15;
-  p.embrace = M_PI;
-  p.voussoirs = 12;
-  p.step = 0.004;
-  p.max_steps = 200;
-  Case c = circular_arch(p);
-  c.dem.stiffness_reduction = 10;
+  const Case c = test::semicircular_arch_case();
   const std::vector<DemVariant> variants = convergence_variants(DemSettings::from_case(c));
   ASSERT_GE(variants.size(), 7u);
   const std::vector<RunResult> runs = run_variants(c, variants, 2);

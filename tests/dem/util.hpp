@@ -6,6 +6,7 @@
 
 #include "case.hpp"
 #include "dem.hpp"
+#include "generators.hpp"
 
 namespace masonry::test {
 
@@ -52,6 +53,22 @@ inline RunResult tilt_run(const Case& c, const std::function<void(const RunResul
   DemSettings s = DemSettings::from_case(c);
   s.collapse_drift = 0.02;  // m; the blocks are 0.2-0.4 m
   return dem_run(c, s, on_step);
+}
+
+// The 12-voussoir semicircular arch (R = 1 m, t = 0.15 m) on a support spreading 4 mm per
+// increment, joints ten times softer than E / h as the paper ran 3DEC.
+inline Case semicircular_arch_case() {
+  CircularArch p;
+  p.radius = 1.0;
+  p.thickness = 0.15;
+  p.embrace = M_PI;
+  p.voussoirs = 12;
+  p.step = 0.004;
+  p.max_steps = 200;
+  Case c = circular_arch(p);
+  c.dem.friction_angle = 35;
+  c.dem.stiffness_reduction = 10;
+  return c;
 }
 
 }  // namespace masonry::test
