@@ -42,8 +42,9 @@ struct Attempt {
   long long move_cycles = 0;
   double move_drift = 0;      // m, largest block displacement during the move
   // What the structure still travelled during the hold over what it travelled during the move
-  // (a diagnostic, per step: on the cathedral with rotation it stays at 0.25-0.8 even with the
-  // supports 32 times slower, so it measures slow settling, not a lag behind the loading).
+  // (a diagnostic, per step. On the cathedral with rotation it is 1.3-2 at the default loading
+  // and at half its speed, and stayed above 0.25 with supports 32 times slower, so it measures
+  // slow settling of parts other than those the move carries, not a lag behind the loading).
   double lag() const { return move_drift > 0 ? hold.drift / move_drift : 0.0; }
 };
 
