@@ -20,5 +20,6 @@ void add_dem_commands(CLI::App& app, Commands& out);    // dem/cli.cpp: dem
 void add_compare_commands(CLI::App& app, Commands& out);  // compare/cli.cpp: compare, demo
 void add_sweep_commands(CLI::App& app, Commands& out);    // sweep/cli.cpp: sweep
 void add_tradeoff_commands(CLI::App& app, Commands& out); // tradeoff/cli.cpp: tradeoff
+void add_validate_commands(CLI::App& app, Commands& out); // validate/cli.cpp: validate
 
 }  // namespace masonry

@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
 #ifdef MASONRY_HAVE_TRADEOFF_CLI
   masonry::add_tradeoff_commands(app, commands);
 #endif
+#ifdef MASONRY_HAVE_VALIDATE_CLI
+  masonry::add_validate_commands(app, commands);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

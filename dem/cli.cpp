@@ -68,7 +68,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   sub->add_option("--friction", o->friction, "Friction angle, degrees (case: dem.friction_angle, default 35)");
   sub->add_option("--stiffness-reduction", o->reduction, "Divide kn and ks by this (case default 1; the paper used 10)");
   sub->add_option("--damping", o->damping, "Local damping coefficient in [0, 1) (default 0.8)");
-  sub->add_option("--timestep-factor", o->factor, "Time step / critical time step bound, in (0, 1] (default 0.2)");
+  sub->add_option("--timestep-factor", o->factor, "Time step / critical time step bound, in (0, 1] (default 0.8)");
   sub->add_option("--equilibrium-tolerance", o->eq_tol, "Largest unbalanced force / block weight at equilibrium (default 1e-4)");
   sub->add_option("--velocity-tolerance", o->vel_tol, "Largest block speed at equilibrium, m/s (default 1e-5)");
   sub->add_option("--hold-time", o->hold, "Model-time cap of one hold, s: a hold that neither settles nor runs away by then is undecided (default 30)");

@@ -70,6 +70,14 @@ double scene_size(const Case& c) {
 
 double block_mass(const Block& b) { return b.density * std::abs(signed_area(b.vertices)) * b.depth; }
 
+Vec2 dead_load_resultant(const Case& c) {
+  Vec2 f(0, 0);
+  for (const Block& b : c.blocks)
+    if (!b.support) f.y() -= block_mass(b) * c.gravity;
+  for (const Load& l : c.loads) f += l.force;
+  return f;
+}
+
 namespace {
 
 // Line and column of a byte offset, for JSON syntax errors.

@@ -128,5 +128,8 @@ double polar_moment(const std::vector<Vec2>& poly);
 double scene_size(const Case& c);
 // Mass (kg) and weight (N) of a block: density * area * depth (* gravity).
 double block_mass(const Block& b);
+// Resultant of the dead loads (the free blocks' weights and the point loads), N: what the
+// supports together carry in any equilibrium.
+Vec2 dead_load_resultant(const Case& c);
 
 }  // namespace masonry

@@ -1,0 +1,181 @@
+// `masonry validate` and its catalogue: the format's refusals, the judging of rows (a tolerance
+// that cannot be met fails, expected values from another method), and the command's exit codes.
+// The physics of the built-in catalogue is checked by running it: CI runs `masonry validate
+// --quick` (.ci/run); here only its cheapest entries run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "common.hpp"
+#include "validate.hpp"
+
+namespace masonry {
+namespace {
+
+using test::Scratch;
+
+const std::string kExe = MASONRY_EXE;
+
+// The tilting block of cases/tilting-block.json: b/h = 0.5, 1 degree of tilt per step.
+std::string block_file() { return std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json"; }
+
+// A catalogue with one benchmark on the tilting block's capacity: toppling at atan(b/h).
+std::string one_benchmark(const std::string& methods, const std::string& expected = "0.4636476090008061",
+                          const std::string& extra = "") {
+  return R"x({"format": "masonry-catalogue/1", "benchmarks": [{"name": "topple", "title": "Toppling.",
+    "source": "closed form atan(b/h)", "case": {"file": ")x" +
+         block_file() + R"("}, "quantity": "capacity", "expected": )" + expected + extra + R"(, "methods": )" + methods + "}]}";
+}
+
+std::string one_line_error(const std::string& text) {
+  try {
+    parse_catalogue(text, "mine.json", ".");
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ValidateCatalogue, BuiltInCataloguesEveryEntryWithItsSourceAndArgument) {
+  const Catalogue cat = builtin_catalogue();
+  ASSERT_FALSE(cat.benchmarks.empty());
+  int quick = 0;
+  for (const Benchmark& b : cat.benchmarks) {
+    EXPECT_FALSE(b.source.empty()) << b.name;
+    quick += b.quick;
+    for (const MethodRun& m : b.methods)
+      if (b.quantity != Quantity::stands) {
+        EXPECT_FALSE(m.tolerance.why.empty()) << b.name;
+      }
+  }
+  EXPECT_GT(quick, 0);
+  // What the issue asks the catalogue to hold, by name.
+  for (const char* name : {"block-topples", "block-slides", "block-least-friction", "milankovitch-n20", "arch-friction-rotational",
+                           "arch-friction-sliding", "pointed-arch-paper", "pointed-arch-test", "agreement-cathedral-settlement",
+                           "reactions-cathedral-settlement", "duality-cathedral-settlement-rotation"}) {
+    bool found = false;
+    for (const Benchmark& b : cat.benchmarks) found = found || b.name == name;
+    EXPECT_TRUE(found) << name;
+  }
+}
+
+TEST(ValidateCatalogue, RefusesWithOneLineNamingFileBenchmarkAndField) {
+  const std::string prd = R"({"prd": {"tolerance": {"absolute": 0.02, "why": "one step"}}})";
+  EXPECT_EQ(one_line_error(one_benchmark(prd)), "");
+  struct Bad {
+    std::string text, needle;
+  };
+  const std::vector<Bad> bad = {
+      {"{\"format\": \"masonry-catalogue/1\", \"benchmarks\": [", "malformed JSON"},
+      {R"({"format": "masonry-catalogue/2", "benchmarks": []})", "field 'format'"},
+      {one_benchmark(R"({"prd": {}})"), "benchmark 'topple': field 'methods.prd.tolerance': missing"},
+      {one_benchmark(R"({"prd": {"tolerance": {"absolute": 0.02}}})"), "field 'methods.prd.tolerance.why': missing"},
+      {one_benchmark(R"({"fem": {"tolerance": {"absolute": 0.02, "why": "x"}}})"), "unknown method 'fem'"},
+      {one_benchmark(prd, "0.46", R"(, "colour": "red")"), "field 'colour': unknown field"},
+      {one_benchmark(R"({"dem": {"tolerance": {"absolute": 0.1, "why": "x"}}})", "{\"method\": \"dem\"}"), "its own result"},
+      {one_benchmark(prd, "\"tall\""), "field 'expected'"},
+  };
+  for (const Bad& b : bad) {
+    const std::string msg = one_line_error(b.text);
+    EXPECT_NE(msg.find("mine.json"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(b.needle), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  // A PRD-only quantity on the DEM, and a search without its range.
+  std::string text = one_benchmark(R"({"dem": {"tolerance": {"absolute": 0.1, "why": "x"}}})");
+  text.replace(text.find("\"capacity\""), 10, "\"least_friction_angle\"");
+  EXPECT_NE(one_line_error(text).find("is a PRD quantity"), std::string::npos);
+  text = one_benchmark(prd);
+  text.replace(text.find("\"capacity\""), 10, "\"threshold\"");
+  EXPECT_NE(one_line_error(text).find("field 'search'"), std::string::npos);
+}
+
+TEST(ValidateRun, ATightToleranceFailsAndTheOtherMethodCanBeTheReference) {
+  // PRD's capacity is the last stable step, 26 degrees = 0.4538 rad, one step below atan(0.5):
+  // inside a tolerance of one step (0.0175 rad), outside one of 1e-6.
+  const Catalogue cat = parse_catalogue(
+      one_benchmark(R"({"prd": {"tolerance": {"absolute": 0.0175, "why": "one step"}}})"), "a.json", ".");
+  RunCache cache;
+  auto rows = run_benchmark(cat, cat.benchmarks[0], cache);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_TRUE(rows[0].pass) << rows[0].note;
+  EXPECT_NEAR(rows[0].obtained, 26 * M_PI / 180, 1e-9);
+
+  const Catalogue tight = parse_catalogue(
+      one_benchmark(R"({"prd": {"tolerance": {"absolute": 1e-6, "why": "impossible"}}})"), "b.json", ".");
+  rows = run_benchmark(tight, tight.benchmarks[0], cache);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_FALSE(rows[0].pass);
+  const std::string why = validation_failures(rows);
+  EXPECT_NE(why.find("FAIL topple (prd): expected capacity 0.463648"), std::string::npos) << why;
+  EXPECT_NE(why.find("closed form atan(b/h)"), std::string::npos) << why;
+
+  // The DEM judged against PRD on the same case: the two methods agree within one step.
+  const Catalogue vs = parse_catalogue(
+      one_benchmark(R"({"dem": {"tolerance": {"absolute": 0.0175, "why": "one step"}}})", R"({"method": "prd"})"), "c.json", ".");
+  rows = run_benchmark(vs, vs.benchmarks[0], cache);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].expected_from, "PRD on the same case");
+  EXPECT_NEAR(rows[0].expected, 26 * M_PI / 180, 1e-9);
+  EXPECT_TRUE(rows[0].pass) << rows[0].note;
+}
+
+TEST(ValidateRun, ASearchThatDoesNotBracketTheThresholdFailsWithAReason) {
+  // The block stands whatever its density: no threshold within the range.
+  const std::string text = R"({"format": "masonry-catalogue/1", "benchmarks": [{"name": "density", "title": "t",
+    "source": "s", "case": {"file": ")" + block_file() + R"("}, "options": {"motion.max_steps": 0},
+    "quantity": "threshold", "search": {"parameter": "blocks_density_is_not_an_option", "range": [1, 2], "resolution": 0.1},
+    "expected": 1.5, "methods": {"prd": {"tolerance": {"absolute": 0.1, "why": "x"}}}}]})";
+  const Catalogue cat = parse_catalogue(text, "d.json", ".");
+  RunCache cache;
+  // A searched parameter that is neither an option nor a generator parameter is bad input.
+  EXPECT_THROW(run_benchmark(cat, cat.benchmarks[0], cache), CaseError);
+
+  std::string g = text;
+  g.replace(g.find("blocks_density_is_not_an_option"), 31, "gravity");
+  g.replace(g.find("[1, 2]"), 6, "[5, 20]");
+  const Catalogue stands = parse_catalogue(g, "e.json", ".");
+  const auto rows = run_benchmark(stands, stands.benchmarks[0], cache);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_FALSE(rows[0].pass);
+  EXPECT_FALSE(rows[0].measured);
+  EXPECT_NE(rows[0].note.find("stands at both ends"), std::string::npos) << rows[0].note;
+}
+
+TEST(ValidateCommand, ExitCodesTablesAndFiles) {
+  Scratch dir("validate");
+  // Two cheap built-in benchmarks pass: exit 0, the table, the JSON and Markdown files.
+  const std::string json = (dir.path / "v.json").string(), md = (dir.path / "v.md").string();
+  const std::string out = (dir.path / "out").string(), err = (dir.path / "err").string();
+  EXPECT_EQ(test::run(kExe + " validate --only block-topples arch-stands --json " + json + " --markdown " + md + " >" + out +
+                      " 2>" + err),
+            0);
+  const std::string table = test::read(out);
+  EXPECT_NE(table.find("4 of 4 passed"), std::string::npos) << table;
+  EXPECT_NE(table.find("source"), std::string::npos);
+  EXPECT_NE(test::read(err).find("validate [2/2] arch-stands"), std::string::npos);  // progress lines
+  const auto j = nlohmann::json::parse(test::read(json));
+  EXPECT_EQ(j["rows"].size(), 4u);
+  EXPECT_EQ(j["passed"], 4);
+  EXPECT_NE(test::read(md).find("| block-topples | prd |"), std::string::npos);
+
+  // A failing row: exit 1 and what was expected, from where.
+  const std::string cat = (dir.path / "tight.json").string();
+  test::write(cat, one_benchmark(R"({"prd": {"tolerance": {"absolute": 1e-6, "why": "impossible"}}})"));
+  EXPECT_EQ(test::run(kExe + " validate --quiet --catalogue " + cat + " >" + out + " 2>" + err), 1);
+  EXPECT_NE(test::read(out).find("FAIL topple (prd)"), std::string::npos) << test::read(out);
+
+  // Bad input: exit 2 with one line naming the file and the entry.
+  test::write(cat, one_benchmark(R"({"prd": {"tolerance": {"why": "no number"}}})"));
+  EXPECT_EQ(test::run(kExe + " validate --catalogue " + cat + " >" + out + " 2>" + err), 2);
+  const std::string e = test::read(err);
+  EXPECT_NE(e.find("tight.json: benchmark 'topple': field 'methods.prd.tolerance'"), std::string::npos) << e;
+  EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 1) << e;
+  EXPECT_EQ(test::run(kExe + " validate --only no-such-benchmark >" + out + " 2>" + err), 2);
+  EXPECT_NE(test::read(err).find("no benchmark named 'no-such-benchmark'"), std::string::npos);
+  EXPECT_EQ(test::run(kExe + " validate --catalogue " + (dir.path / "missing.json").string() + " >" + out + " 2>" + err), 2);
+}
+
+}  // namespace
+}  // namespace masonry

@@ -1,0 +1,89 @@
+// `masonry validate`: the catalogue of benchmarks on both methods, one table, an exit code for CI.
+//   masonry validate [--quick] [--only NAME...] [--json FILE] [--markdown FILE] [--catalogue FILE]
+// Exit code 0 when every row passes, 1 when one fails, 2 for bad input (main()).
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <set>
+
+#include "command.hpp"
+#include "results.hpp"
+#include "validate.hpp"
+
+namespace masonry {
+
+namespace {
+
+struct Opts {
+  bool quick = false, quiet = false, list = false;
+  std::vector<std::string> only;
+  std::string json, markdown, catalogue;
+};
+
+// The benchmarks chosen by --quick and --only, in catalogue order; an unknown name is bad input.
+std::vector<const Benchmark*> chosen(const Catalogue& cat, const Opts& o) {
+  std::set<std::string> wanted(o.only.begin(), o.only.end());
+  for (const std::string& n : wanted) {
+    bool known = false;
+    for (const Benchmark& b : cat.benchmarks) known = known || b.name == n;
+    if (!known) throw CaseError(cat.source + ": no benchmark named '" + n + "' (masonry validate --list)");
+  }
+  std::vector<const Benchmark*> out;
+  for (const Benchmark& b : cat.benchmarks)
+    if ((!o.quick || b.quick) && (wanted.empty() || wanted.count(b.name))) out.push_back(&b);
+  if (out.empty()) throw CaseError(cat.source + ": no benchmark left to run (--quick and --only exclude them all)");
+  return out;
+}
+
+std::string command_line(const Opts& o) {
+  std::string s = "masonry validate";
+  if (o.quick) s += " --quick";
+  for (const std::string& n : o.only) s += " --only " + n;
+  if (!o.catalogue.empty()) s += " --catalogue " + o.catalogue;
+  return s;
+}
+
+}  // namespace
+
+void add_validate_commands(CLI::App& app, Commands& out) {
+  auto o = std::make_shared<Opts>();
+  CLI::App* sub = app.add_subcommand(
+      "validate", "Benchmarks with answers from outside the code (closed forms, published results), run on PRD and the DEM");
+  sub->add_flag("--quick", o->quick, "Only the benchmarks marked quick (under a minute; CI runs these)");
+  sub->add_option("--only", o->only, "Only these benchmarks (names, see --list)");
+  sub->add_option("--json", o->json, "Write the rows to this JSON file (masonry-validation/1)");
+  sub->add_option("--markdown", o->markdown, "Write the report to this Markdown file");
+  sub->add_option("--catalogue", o->catalogue, "A catalogue file (masonry-catalogue/1) instead of the built-in one");
+  sub->add_flag("--list", o->list, "List the catalogue's benchmarks and exit");
+  sub->add_flag("--quiet", o->quiet, "No progress lines");
+  out.push_back({sub, [o]() {
+                   const Catalogue cat = o->catalogue.empty() ? builtin_catalogue() : load_catalogue(o->catalogue);
+                   if (o->list) {
+                     for (const Benchmark& b : cat.benchmarks)
+                       std::cout << b.name << (b.quick ? " (quick)" : "") << ": " << b.title << "\n";
+                     return 0;
+                   }
+                   const std::vector<const Benchmark*> todo = chosen(cat, *o);
+                   std::vector<ValidationRow> rows;
+                   RunCache cache;
+                   for (size_t k = 0; k < todo.size(); ++k) {
+                     const auto part = run_benchmark(cat, *todo[k], cache, [&](const ValidationRow& r) {
+                       if (o->quiet) return;
+                       std::fprintf(stderr, "validate [%zu/%zu] %s (%s): %s, %.2f s\n", k + 1, todo.size(), r.benchmark->name.c_str(),
+                                    method_name(r.method), r.pass ? "pass" : "FAIL", r.seconds);
+                     });
+                     rows.insert(rows.end(), part.begin(), part.end());
+                     // Finished rows are kept even when a later benchmark fails or the run is stopped.
+                     if (!o->json.empty()) write_file_atomic(o->json, validation_json(cat, rows).dump(1) + "\n");
+                   }
+                   std::cout << validation_table(rows);
+                   const std::string failures = validation_failures(rows);
+                   if (!failures.empty()) std::cout << "\n" << failures;
+                   if (!o->markdown.empty()) write_file_atomic(o->markdown, validation_markdown(cat, rows, command_line(*o)));
+                   for (const ValidationRow& r : rows)
+                     if (!r.pass) return 1;
+                   return 0;
+                 }});
+}
+
+}  // namespace masonry

@@ -1,0 +1,169 @@
+// The validation reports: the terminal table, the failures spelled out, JSON and Markdown.
+#include <algorithm>
+#include <sstream>
+
+#include "format.hpp"
+#include "validate.hpp"
+
+namespace masonry {
+
+namespace {
+
+std::string cell_expected(const ValidationRow& r) {
+  if (r.benchmark->quantity == Quantity::stands) return r.expected > 0 ? "stands" : "falls";
+  return fmt::g(r.expected, 6);
+}
+
+std::string cell_obtained(const ValidationRow& r) {
+  if (!r.measured) return "-";
+  if (r.benchmark->quantity == Quantity::stands) return r.obtained > 0 ? "stands" : "falls";
+  return fmt::g(r.obtained, 6);
+}
+
+std::string cell_error(const ValidationRow& r) {
+  if (!r.measured || r.benchmark->quantity == Quantity::stands) return "-";
+  std::string s = fmt::g(r.error(), 3);
+  if (r.expected != 0) s += " (" + fmt::number(100 * r.error() / std::abs(r.expected), "%+.2f%%", 100 * r.error() / std::abs(r.expected)) + ")";
+  return s;
+}
+
+std::string cell_tolerance(const ValidationRow& r) {
+  if (r.benchmark->quantity == Quantity::stands) return "exact";
+  return fmt::g(r.tolerance, 3);
+}
+
+std::string quantity_cell(const ValidationRow& r) {
+  std::string q = quantity_name(r.benchmark->quantity);
+  if (!r.unit.empty()) q += " (" + r.unit + ")";
+  return q;
+}
+
+std::vector<std::vector<std::string>> cells(const std::vector<ValidationRow>& rows) {
+  std::vector<std::vector<std::string>> out;
+  for (const ValidationRow& r : rows)
+    out.push_back({r.benchmark->name, method_name(r.method), quantity_cell(r), cell_expected(r), cell_obtained(r), cell_error(r),
+                   cell_tolerance(r), r.pass ? "pass" : "FAIL", fmt::number(r.seconds, "%.2f s", r.seconds), r.expected_from});
+  return out;
+}
+
+const std::vector<std::string> kHeader = {"benchmark", "method", "quantity", "expected", "obtained", "error",
+                                          "tolerance", "pass", "time", "source"};
+
+std::string md_escape(std::string s) {
+  std::string out;
+  for (char ch : s) {
+    if (ch == '|' || ch == '*' || ch == '_' || ch == '<' || ch == '>' || ch == '[' || ch == ']') out += '\\';
+    out += ch == '\n' ? ' ' : ch;
+  }
+  return out;
+}
+
+int passed(const std::vector<ValidationRow>& rows) {
+  return static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const ValidationRow& r) { return r.pass; }));
+}
+
+}  // namespace
+
+std::string validation_table(const std::vector<ValidationRow>& rows) {
+  const auto body = cells(rows);
+  std::vector<size_t> width(kHeader.size());
+  for (size_t k = 0; k < kHeader.size(); ++k) {
+    width[k] = kHeader[k].size();
+    for (const auto& row : body) width[k] = std::max(width[k], row[k].size());
+  }
+  std::ostringstream out;
+  auto line = [&](const std::vector<std::string>& row) {
+    for (size_t k = 0; k < row.size(); ++k) {
+      out << row[k];
+      if (k + 1 < row.size()) out << std::string(width[k] - row[k].size() + 2, ' ');
+    }
+    out << "\n";
+  };
+  line(kHeader);
+  for (const auto& row : body) line(row);
+  out << passed(rows) << " of " << rows.size() << " passed\n";
+  return out.str();
+}
+
+std::string validation_failures(const std::vector<ValidationRow>& rows) {
+  std::ostringstream out;
+  for (const ValidationRow& r : rows) {
+    if (r.pass) continue;
+    const Benchmark& b = *r.benchmark;
+    out << "FAIL " << b.name << " (" << method_name(r.method) << "): expected " << quantity_name(b.quantity) << " "
+        << cell_expected(r);
+    if (b.quantity != Quantity::stands) out << " +- " << fmt::g(r.tolerance, 3);
+    if (!r.unit.empty()) out << " " << r.unit;
+    out << " (" << r.expected_from << "); ";
+    if (r.measured) out << "obtained " << cell_obtained(r);
+    else out << "no result";
+    if (!r.note.empty()) out << ": " << r.note;
+    out << "\n";
+  }
+  return out.str();
+}
+
+nlohmann::ordered_json validation_json(const Catalogue& cat, const std::vector<ValidationRow>& rows) {
+  nlohmann::ordered_json j;
+  j["format"] = "masonry-validation/1";
+  j["catalogue"] = cat.source;
+  j["passed"] = passed(rows);
+  j["rows"] = nlohmann::ordered_json::array();
+  for (const ValidationRow& r : rows) {
+    const Benchmark& b = *r.benchmark;
+    nlohmann::ordered_json x = {{"benchmark", b.name}, {"title", b.title}, {"method", method_name(r.method)},
+                                {"quantity", quantity_name(b.quantity)}, {"unit", r.unit}, {"expected", r.expected},
+                                {"expected_from", r.expected_from}};
+    // No NaN reaches a report: a row without a number says so.
+    x["obtained"] = r.measured ? nlohmann::ordered_json(r.obtained) : nlohmann::ordered_json(nullptr);
+    x["error"] = r.measured ? nlohmann::ordered_json(r.error()) : nlohmann::ordered_json(nullptr);
+    x["tolerance"] = r.tolerance;
+    x["pass"] = r.pass;
+    x["seconds"] = r.seconds;
+    x["note"] = r.note;
+    for (const MethodRun& m : b.methods)
+      if (m.method == r.method) x["tolerance_why"] = m.tolerance.why;
+    j["rows"].push_back(x);
+  }
+  return j;
+}
+
+std::string validation_markdown(const Catalogue& cat, const std::vector<ValidationRow>& rows, const std::string& command) {
+  std::ostringstream out;
+  out << "# Validation: both methods against what is known\n\n";
+  out << "Generated by `" << command << "` from " << md_escape(cat.source) << ". " << passed(rows) << " of " << rows.size()
+      << " rows pass. Times are wall times of one run on a shared machine (indicative only).\n\n";
+  out << "|";
+  for (const std::string& h : kHeader) out << " " << h << " |";
+  out << "\n|";
+  for (size_t k = 0; k < kHeader.size(); ++k) out << "---|";
+  out << "\n";
+  for (const auto& row : cells(rows)) {
+    out << "|";
+    for (const std::string& c : row) out << " " << md_escape(c) << " |";
+    out << "\n";
+  }
+  const std::string failures = validation_failures(rows);
+  if (!failures.empty()) out << "\n## Failures\n\n```\n" << failures << "```\n";
+  out << "\n## The benchmarks\n";
+  const Benchmark* last = nullptr;
+  for (const ValidationRow& r : rows) {
+    const Benchmark& b = *r.benchmark;
+    if (&b != last) {
+      out << "\n### " << md_escape(b.name) << "\n\n" << md_escape(b.title) << " Source: " << md_escape(b.source) << ".";
+      if (!b.notes.empty()) out << " " << md_escape(b.notes);
+      out << "\n\n";
+      last = &b;
+    }
+    out << "- " << method_name(r.method) << ": " << (r.pass ? "pass" : "**fail**") << ", obtained " << md_escape(cell_obtained(r))
+        << (r.unit.empty() ? "" : " " + r.unit);
+    if (!r.note.empty()) out << " (" << md_escape(r.note) << ")";
+    for (const MethodRun& m : b.methods)
+      if (m.method == r.method && b.quantity != Quantity::stands)
+        out << ". Tolerance " << fmt::g(r.tolerance, 3) << (r.unit.empty() ? "" : " " + r.unit) << ": " << md_escape(m.tolerance.why);
+    out << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace masonry
