@@ -15,8 +15,7 @@ namespace {
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Strictly convex or with collinear vertices allowed: collinear vertices are harmless to the
-// manifold (their edges just never become reference faces with a different normal).
+// Convex, collinear vertices allowed (convex_pieces removes them: see without_straight_vertices).
 bool is_convex(const std::vector<Vec2>& p) {
   const size_t n = p.size();
   const double scale = 1e-12 * std::max(1.0, std::abs(signed_area(p)));
@@ -79,7 +78,23 @@ std::vector<Vec2> merge_on_shared_edge(const std::vector<Vec2>& p, const std::ve
 
 }  // namespace
 
-std::vector<std::vector<Vec2>> convex_pieces(const std::vector<Vec2>& poly) {
+// The polygon without its straight-angle vertices (collinear neighbours, same direction). A
+// Box2D manifold is built on one reference face and clipped to that face's ends: a face split by
+// a collinear vertex (a drawing's vertex where two blocks meet one edge) would carry contact on
+// one part only, and a block standing on half its base topples at once.
+std::vector<Vec2> without_straight_vertices(const std::vector<Vec2>& p) {
+  std::vector<Vec2> out;
+  const size_t n = p.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 e0 = p[i] - p[(i + n - 1) % n], e1 = p[(i + 1) % n] - p[i];
+    const bool straight = std::abs(cross(e0, e1)) <= 1e-9 * e0.norm() * e1.norm() && e0.dot(e1) > 0;
+    if (!straight) out.push_back(p[i]);
+  }
+  return out.size() >= 3 ? out : p;
+}
+
+std::vector<std::vector<Vec2>> convex_pieces(const std::vector<Vec2>& poly_in) {
+  const std::vector<Vec2> poly = without_straight_vertices(poly_in);
   if (poly.size() <= static_cast<size_t>(kMaxPieceVertices) && is_convex(poly)) return {poly};
   std::vector<std::vector<Vec2>> pieces = triangulate(poly);
   // Greedy Hertel-Mehlhorn style merging: few pieces means few contact pairs.
@@ -88,6 +103,7 @@ std::vector<std::vector<Vec2>> convex_pieces(const std::vector<Vec2>& poly) {
     for (size_t i = 0; i < pieces.size() && !merged; ++i)
       for (size_t j = i + 1; j < pieces.size() && !merged; ++j) {
         std::vector<Vec2> u = merge_on_shared_edge(pieces[i], pieces[j]);
+        if (!u.empty()) u = without_straight_vertices(u);  // merged along a line: one face, not two
         if (u.empty() || u.size() > static_cast<size_t>(kMaxPieceVertices) || !is_convex(u)) continue;
         pieces[i] = std::move(u);
         pieces.erase(pieces.begin() + static_cast<long>(j));

@@ -18,7 +18,12 @@ constexpr int kMaxPieceVertices = 8;
 // Splits a simple polygon (counter-clockwise) into convex pieces of at most kMaxPieceVertices
 // vertices each: the polygon itself when it already qualifies, else an ear-clipping triangulation
 // whose triangles are merged greedily while the union stays convex and small enough.
+// Straight-angle vertices (a drawing's vertex in the middle of an edge) are dropped first.
 std::vector<std::vector<Vec2>> convex_pieces(const std::vector<Vec2>& poly);
+
+// The polygon without its straight-angle vertices (collinear neighbours, same direction): the
+// faces the contacts see.
+std::vector<Vec2> without_straight_vertices(const std::vector<Vec2>& p);
 
 struct ManifoldPoint {
   Vec2 point{0, 0};         // midway between the two surfaces, world frame

@@ -219,7 +219,8 @@ void DemModel::Impl::setup() {
 
   for (int b = 0; b < nb; ++b) {
     if (support[b]) continue;
-    const std::vector<Vec2>& v = c.blocks[b].vertices;
+    // The faces contacts see: a straight-angle vertex would split a face in the bound's sum.
+    const std::vector<Vec2> v = dem::without_straight_vertices(c.blocks[b].vertices);
     double P = 0, J = 0;
     for (size_t i = 0, n = v.size(); i < n; ++i) {
       const Vec2 &p = v[i], &q = v[(i + 1) % n];

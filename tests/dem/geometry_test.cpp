@@ -142,4 +142,55 @@ TEST(DemGeometry, CompoundBlockRestsWithItsWeight) {
   EXPECT_NEAR(s.forces[0].point.x(), xc, 1e-3);
 }
 
+// Vertices in the middle of an edge (drawings put them where two blocks meet one edge) change
+// neither the body nor its contacts: the tilting block with such vertices on its base, its sides
+// and the slab's top topples where the plain block does, at atan(b/h) within the bracket and the
+// soft joints' elastic lean (tests/dem/tilt_test.cpp).
+TEST(DemGeometry, StraightAngleVerticesChangeNothing) {
+  const double b = 0.2, h = 0.4;
+  Case plain = test::tilt_case(b, h, 35);
+  Case marked = plain;
+  marked.blocks[0].vertices = {Vec2(-0.6, -0.1), Vec2(0.6, -0.1), Vec2(0.6, 0), Vec2(0.05, 0), Vec2(0, 0), Vec2(-0.6, 0)};
+  marked.blocks[1].vertices = {Vec2(-0.1, 0), Vec2(0, 0),     Vec2(0.1, 0),  Vec2(0.1, 0.2),
+                               Vec2(0.1, 0.4), Vec2(0, 0.4), Vec2(-0.1, 0.4), Vec2(-0.1, 0.2)};
+  validate_geometry(marked);
+  EXPECT_EQ(dem::convex_pieces(marked.blocks[1].vertices).front().size(), 4u);
+  const RunResult r0 = test::tilt_run(plain), r1 = test::tilt_run(marked);
+  ASSERT_EQ(r0.stopped, "collapse") << r0.message;
+  ASSERT_EQ(r1.stopped, "collapse") << r1.message;
+  EXPECT_NEAR(r1.capacity, std::atan(b / h), 2e-3);
+  EXPECT_NEAR(r1.capacity, r0.capacity, 0.01 * plain.motion.step);
+}
+
+// Two blocks side by side on one slab edge, the slab with a vertex where they meet and each block
+// with one in the middle of its base: each stands on its whole base, its weight carried under its
+// centroid.
+TEST(DemGeometry, BlocksMeetingOneEdgeStandOnTheirWholeBase) {
+  Case c = test::slab_case();
+  c.blocks[0].vertices = {Vec2(-0.6, -0.1), Vec2(0.6, -0.1), Vec2(0.6, 0), Vec2(0, 0), Vec2(-0.6, 0)};
+  for (double x0 : {-0.3, 0.0}) {
+    Block k;
+    k.id = x0 < 0 ? "left" : "right";
+    k.vertices = {Vec2(x0, 0), Vec2(x0 + 0.15, 0), Vec2(x0 + 0.3, 0), Vec2(x0 + 0.3, 0.4), Vec2(x0, 0.4)};
+    k.density = 2000;
+    c.blocks.push_back(k);
+  }
+  const RunResult r = dem_run(c, DemSettings::from_case(c));
+  ASSERT_EQ(r.steps.size(), 1u);
+  const StepRecord& s = r.steps[0];
+  ASSERT_TRUE(s.extra.value("settled", false)) << r.message;
+  const double W = block_mass(c.blocks[1]) * c.gravity;
+  EXPECT_NEAR(s.reactions[0].force.y(), 2 * W, 1e-3 * W);
+  int on_slab = 0;
+  for (const JointForce& f : s.forces) {
+    const JointInfo& J = r.joints[f.joint];
+    if (J.i != 0 && J.j != 0) continue;  // the joint between the two blocks
+    const int blk = J.i == 0 ? J.j : J.i;
+    EXPECT_NEAR(f.normal, W, 1e-3 * W) << c.blocks[blk].id;
+    EXPECT_NEAR(f.point.x(), centroid(c.blocks[blk].vertices).x(), 1e-3) << c.blocks[blk].id;
+    ++on_slab;
+  }
+  EXPECT_EQ(on_slab, 2);
+}
+
 }  // namespace
