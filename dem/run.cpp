@@ -114,6 +114,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
     rec.extra["drift"] = h.drift;
     rec.extra["contact_points"] = m.contact_points();
     rec.extra["max_overlap"] = m.max_overlap();
+    require_finite(rec);
     r.steps.push_back(std::move(rec));
     r.timing.cycles = m.cycles();
     if (on_step) {

@@ -15,6 +15,21 @@ namespace masonry {
 using nlohmann::json;
 using nlohmann::ordered_json;
 
+namespace {
+// Ranges of the case's quantities (README, "Case files": ranges), wide enough for any masonry
+// structure and narrow enough that every derived quantity stays finite in double precision.
+constexpr double kMaxCoordinate = 1e5;      // m: 100 km from the origin
+constexpr double kMaxLength = 1e5;          // m: depths, steps, tolerances
+constexpr double kMaxDensity = 1e5;         // kg/m^3 (the densest element, osmium, is 2.3e4)
+constexpr double kMaxGravity = 1e3;         // m/s^2 (100 g)
+constexpr double kMaxForce = 1e12;          // N
+constexpr double kMaxRate = 1e3;            // m or rad per m of d
+constexpr double kMaxModulus = 1e13;        // Pa (diamond: 1.2e12)
+constexpr double kMaxJointStiffness = 1e18; // Pa/m
+constexpr double kMaxModelTime = 1e4;       // s of DEM model time
+constexpr double kFinestFraction = 1e-9;    // of the scene size: the finest length a case may set
+}  // namespace
+
 int Case::block_index(const std::string& id) const {
   for (size_t i = 0; i < blocks.size(); ++i)
     if (blocks[i].id == id) return static_cast<int>(i);
@@ -122,6 +137,18 @@ struct Reader {
     return it == obj.end() ? dflt : number(*it, where, field);
   }
 
+  // The physically meaningful range of a quantity (README, "Ranges"): outside it the solvers'
+  // arithmetic (GLPK's scaled LPs, the DEM's time step and energies) overflows or loses every
+  // digit, so the case is refused before the first step.
+  void range(double x, double lo, double hi, const std::string& where, const std::string& field, const char* unit,
+             bool lo_open = false) const {
+    if ((lo_open ? x > lo : x >= lo) && x <= hi) return;
+    std::ostringstream m;
+    m << "field '" << field << "' = " << x << " is outside " << (lo_open ? "(" : "[") << lo << ", " << hi << "]"
+      << (*unit ? " " : "") << unit;
+    fail(where, m.str());
+  }
+
   Vec2 point(const json& v, const std::string& where, const std::string& field) const {
     if (!v.is_array() || v.size() != 2) fail(where, "field '" + field + "' must be [x, y]");
     return Vec2(number(v[0], where, field), number(v[1], where, field));
@@ -150,6 +177,39 @@ struct Reader {
     return b;
   }
 };
+
+// Tolerances and steps against the scene: below 1e-9 of the scene size a length is lost in the
+// round-off of the coordinates; a contact tolerance or collapse drift above a tenth of it makes
+// every block touch or nothing a collapse. Derived quantities must be finite before any step.
+void check_scales(const Case& c, const Reader& r) {
+  const double L = scene_size(c);
+  const double fine = kFinestFraction * L;
+  if (!(std::isfinite(L) && L > 0)) r.fail("blocks", "the scene has no finite size");
+  auto between = [&](double x, double lo, double hi, const std::string& where, const std::string& field, const char* why) {
+    if (x >= lo && x <= hi) return;
+    std::ostringstream m;
+    m << "field '" << field << "' = " << x << " m is outside [" << lo << ", " << hi << "] m for a scene of " << L << " m ("
+      << why << ")";
+    r.fail(where, m.str());
+  };
+  between(c.motion.step, fine, L, "motion", "step", "1e-9 to 1 times the scene size");
+  between(c.prd.contact_tolerance, fine, 0.1 * L, "prd", "contact_tolerance", "1e-9 to 0.1 times the scene size");
+  if (c.prd.event_tolerance > 0) between(c.prd.event_tolerance, fine, 0.1 * L, "prd", "event_tolerance", "1e-9 to 0.1 times the scene size");
+  if (c.prd.max_step > 0) between(c.prd.max_step, fine, L, "prd", "max_step", "1e-9 to 1 times the scene size");
+  if (c.dem.collapse_drift > 0) between(c.dem.collapse_drift, fine, L, "dem", "collapse_drift", "1e-9 to 1 times the scene size");
+  // The weight and what the supports travel over the run: finite, so energies and ratios are.
+  double W = 0;
+  for (const Block& b : c.blocks)
+    if (!b.support) W += block_mass(b) * c.gravity;
+  if (!std::isfinite(W)) r.fail("blocks", "the total weight is not a finite number");
+  const Vec2 P = dead_load_resultant(c);
+  if (!(P.norm() > 0)) r.fail("case", "field 'gravity': nothing loads the structure (gravity 0 and no loads)");
+  for (const SupportMotion& m : c.motion.supports) {
+    const double travel = c.motion.step * c.motion.max_steps * (m.translation.norm() + std::abs(m.rotation) * L);
+    if (!std::isfinite(travel) || travel > kMaxCoordinate)
+      r.fail("motion of block '" + c.blocks[m.block].id + "'", "the support would travel beyond 1e5 m over max_steps");
+  }
+}
 
 }  // namespace
 
@@ -190,7 +250,7 @@ Case parse_case(const std::string& text, const std::string& source) {
   c.name = r.string(doc, "case", "name", source);
   c.description = r.string(doc, "case", "description", "");
   c.gravity = r.number(doc, "case", "gravity", 9.81);
-  if (c.gravity < 0) r.fail("case", "field 'gravity' must be >= 0 (it acts along -y)");
+  r.range(c.gravity, 0, kMaxGravity, "case", "gravity", "m/s^2 (it acts along -y)");
 
   if (!doc.contains("blocks") || !doc["blocks"].is_array() || doc["blocks"].empty())
     r.fail("case", "field 'blocks' must be a non-empty array");
@@ -208,20 +268,23 @@ Case parse_case(const std::string& text, const std::string& source) {
     if (!ids.insert(b.id).second) r.fail(where, "field 'id': duplicate id");
     if (!jb.contains("vertices") || !jb["vertices"].is_array())
       r.fail(where, "field 'vertices' must be an array of [x, y]");
-    for (const json& v : jb["vertices"]) b.vertices.push_back(r.point(v, where, "vertices"));
+    for (const json& v : jb["vertices"]) {
+      b.vertices.push_back(r.point(v, where, "vertices"));
+      r.range(b.vertices.back().cwiseAbs().maxCoeff(), 0, kMaxCoordinate, where, "vertices", "m (|x|, |y|)");
+    }
     if (jb.contains("support")) {
       if (!jb["support"].is_boolean()) r.fail(where, "field 'support' must be true or false");
       b.support = jb["support"].get<bool>();
     }
     b.depth = r.number(jb, where, "depth", 1.0);
-    if (!(b.depth > 0)) r.fail(where, "field 'depth' must be positive");
+    r.range(b.depth, 0, kMaxLength, where, "depth", "m", true);
     if (!b.support) {
       if (!jb.contains("density")) r.fail(where, "field 'density' is required for a non-support block");
       b.density = r.number(jb["density"], where, "density");
-      if (!(b.density > 0)) r.fail(where, "field 'density' must be positive");
+      r.range(b.density, 0, kMaxDensity, where, "density", "kg/m^3", true);
     } else {
       b.density = r.number(jb, where, "density", 0.0);
-      if (b.density < 0) r.fail(where, "field 'density' must not be negative");
+      r.range(b.density, 0, kMaxDensity, where, "density", "kg/m^3");
     }
     c.blocks.push_back(std::move(b));
   }
@@ -237,7 +300,9 @@ Case parse_case(const std::string& text, const std::string& source) {
       if (c.blocks[l.block].support) r.fail(where, "field 'block': '" + c.blocks[l.block].id + "' is a support; loads go on free blocks");
       if (!jl.contains("force")) r.fail(where, "field 'force' is required");
       l.force = r.point(jl["force"], where, "force");
+      r.range(l.force.norm(), 0, kMaxForce, where, "force", "N (magnitude)");
       l.point = jl.contains("point") ? r.point(jl["point"], where, "point") : centroid(c.blocks[l.block].vertices);
+      r.range(l.point.cwiseAbs().maxCoeff(), 0, kMaxCoordinate, where, "point", "m (|x|, |y|)");
       c.loads.push_back(l);
     }
   }
@@ -246,7 +311,7 @@ Case parse_case(const std::string& text, const std::string& source) {
     const json& jm = doc["motion"];
     r.only(jm, "motion", {"step", "max_steps", "supports"});
     c.motion.step = r.number(jm, "motion", "step", c.motion.step);
-    if (!(c.motion.step > 0)) r.fail("motion", "field 'step' must be positive");
+    r.range(c.motion.step, 0, kMaxLength, "motion", "step", "m", true);
     if (jm.contains("max_steps")) {
       if (!jm["max_steps"].is_number_integer() || jm["max_steps"].get<long long>() < 0 ||
           jm["max_steps"].get<long long>() > 100000000)
@@ -266,8 +331,11 @@ Case parse_case(const std::string& text, const std::string& source) {
         if (!c.blocks[s.block].support) r.fail(where, "field 'block': not a support block (add \"support\": true)");
         if (!seen.insert(s.block).second) r.fail(where, "field 'block': motion given twice");
         if (js.contains("translation")) s.translation = r.point(js["translation"], where, "translation");
+        r.range(s.translation.norm(), 0, kMaxRate, where, "translation", "m per m of d (magnitude)");
         s.rotation = r.number(js, where, "rotation", 0.0);
+        r.range(std::abs(s.rotation), 0, kMaxRate, where, "rotation", "rad per m of d (magnitude)");
         s.about = js.contains("about") ? r.point(js["about"], where, "about") : centroid(c.blocks[s.block].vertices);
+        r.range(s.about.cwiseAbs().maxCoeff(), 0, kMaxCoordinate, where, "about", "m (|x|, |y|)");
         c.motion.supports.push_back(s);
       }
     }
@@ -278,12 +346,12 @@ Case parse_case(const std::string& text, const std::string& source) {
     r.only(jp, "prd", {"contact_tolerance", "adaptive", "event_tolerance", "max_step", "sliding_check"});
     c.prd.sliding_check = r.boolean(jp, "prd", "sliding_check", c.prd.sliding_check);
     c.prd.contact_tolerance = r.number(jp, "prd", "contact_tolerance", c.prd.contact_tolerance);
-    if (!(c.prd.contact_tolerance > 0)) r.fail("prd", "field 'contact_tolerance' must be positive");
+    r.range(c.prd.contact_tolerance, 0, kMaxLength, "prd", "contact_tolerance", "m", true);
     c.prd.adaptive = r.boolean(jp, "prd", "adaptive", c.prd.adaptive);
     c.prd.event_tolerance = r.number(jp, "prd", "event_tolerance", c.prd.event_tolerance);
     c.prd.max_step = r.number(jp, "prd", "max_step", c.prd.max_step);
-    if (!(c.prd.event_tolerance >= 0)) r.fail("prd", "field 'event_tolerance' must be >= 0 (0: 1e-4 of the scene size)");
-    if (!(c.prd.max_step >= 0)) r.fail("prd", "field 'max_step' must be >= 0 (0: 16 motion.step)");
+    r.range(c.prd.event_tolerance, 0, kMaxLength, "prd", "event_tolerance", "m (0: 1e-4 of the scene size)");
+    r.range(c.prd.max_step, 0, kMaxLength, "prd", "max_step", "m (0: the default)");
   }
 
   if (doc.contains("dem")) {
@@ -308,22 +376,22 @@ Case parse_case(const std::string& text, const std::string& source) {
     d.bracket_fraction = r.number(jd, "dem", "bracket_fraction", d.bracket_fraction);
     d.ramp_fraction = r.number(jd, "dem", "ramp_fraction", d.ramp_fraction);
     d.collapse_drift = r.number(jd, "dem", "collapse_drift", d.collapse_drift);
-    if (!(d.young_modulus > 0)) r.fail("dem", "field 'young_modulus' must be positive");
+    r.range(d.young_modulus, 0, kMaxModulus, "dem", "young_modulus", "Pa", true);
     if (!(d.poisson > -1 && d.poisson < 0.5)) r.fail("dem", "field 'poisson' must lie in (-1, 0.5)");
     if (!(d.friction_angle >= 0 && d.friction_angle <= 90)) r.fail("dem", "field 'friction_angle' must lie in [0, 90] degrees");
-    if (d.kn && !(*d.kn > 0)) r.fail("dem", "field 'kn' must be positive");
-    if (d.ks && !(*d.ks > 0)) r.fail("dem", "field 'ks' must be positive");
-    if (!(d.stiffness_reduction > 0)) r.fail("dem", "field 'stiffness_reduction' must be positive");
+    if (d.kn) r.range(*d.kn, 0, kMaxJointStiffness, "dem", "kn", "Pa/m", true);
+    if (d.ks) r.range(*d.ks, 0, kMaxJointStiffness, "dem", "ks", "Pa/m", true);
+    r.range(d.stiffness_reduction, 1e-6, 1e6, "dem", "stiffness_reduction", "");
     if (!(d.damping >= 0 && d.damping < 1)) r.fail("dem", "field 'damping' must lie in [0, 1)");
     if (!(d.timestep_factor > 0)) r.fail("dem", "field 'timestep_factor' must be positive");
-    if (!(d.equilibrium_tolerance > 0)) r.fail("dem", "field 'equilibrium_tolerance' must be positive");
-    if (!(d.velocity_tolerance > 0)) r.fail("dem", "field 'velocity_tolerance' must be positive");
-    if (!(d.hold_time > 0)) r.fail("dem", "field 'hold_time' must be positive");
-    if (!(d.move_time >= 0)) r.fail("dem", "field 'move_time' must be >= 0 (0: the support speed servoed on the kinetic energy)");
-    if (!(d.kinetic_ratio > 0)) r.fail("dem", "field 'kinetic_ratio' must be positive");
+    r.range(d.equilibrium_tolerance, 0, 1, "dem", "equilibrium_tolerance", "(of a block's weight)", true);
+    r.range(d.velocity_tolerance, 0, 1, "dem", "velocity_tolerance", "m/s", true);
+    r.range(d.hold_time, 0, kMaxModelTime, "dem", "hold_time", "s", true);
+    r.range(d.move_time, 0, kMaxModelTime, "dem", "move_time", "s (0: the support speed servoed on the kinetic energy)");
+    r.range(d.kinetic_ratio, 0, 1, "dem", "kinetic_ratio", "", true);
     if (!(d.bracket_fraction >= 0 && d.bracket_fraction < 1)) r.fail("dem", "field 'bracket_fraction' must lie in [0, 1)");
     if (!(d.ramp_fraction >= 0 && d.ramp_fraction <= 0.5)) r.fail("dem", "field 'ramp_fraction' must lie in [0, 0.5]");
-    if (!(d.collapse_drift >= 0)) r.fail("dem", "field 'collapse_drift' must be >= 0 (0: 2% of the scene size)");
+    r.range(d.collapse_drift, 0, kMaxLength, "dem", "collapse_drift", "m (0: 2% of the scene size)");
   }
 
   // Orientation: store counter-clockwise.
@@ -331,6 +399,7 @@ Case parse_case(const std::string& text, const std::string& source) {
     if (b.vertices.size() >= 3 && signed_area(b.vertices) < 0) std::reverse(b.vertices.begin(), b.vertices.end());
 
   validate_geometry(c);
+  check_scales(c, r);
 
   bool any_support = false, any_free = false;
   for (const Block& b : c.blocks) {

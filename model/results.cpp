@@ -1,7 +1,9 @@
 #include "results.hpp"
 
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -96,13 +98,20 @@ std::string steps_csv(const RunResult& r) {
 }
 
 void write_file_atomic(const std::string& path, const std::string& text) {
+  std::error_code ec_ignored;
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(tmp + ": cannot write");
+    // The reason from errno: a full disk, a missing permission, a read-only file system.
+    if (!out) throw std::runtime_error(tmp + ": cannot write: " + std::strerror(errno));
     out << text;
     out.flush();
-    if (!out) throw std::runtime_error(tmp + ": write failed");
+    if (!out) {
+      const std::string why = std::strerror(errno);
+      out.close();
+      std::filesystem::remove(tmp, ec_ignored);
+      throw std::runtime_error(tmp + ": write failed: " + why);
+    }
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
@@ -115,6 +124,22 @@ void write_results(const std::string& dir, const RunResult& r, const Case& c) {
   if (ec) throw std::runtime_error(dir + ": cannot create the output directory: " + ec.message());
   write_file_atomic(dir + "/results.json", to_json(r, c).dump(1) + "\n");
   write_file_atomic(dir + "/steps.csv", steps_csv(r));
+}
+
+void require_finite(const StepRecord& s) {
+  auto check = [&](double x, const std::string& what) {
+    if (std::isfinite(x)) return;
+    std::ostringstream m;
+    m << "the state at step " << s.index << " (d = " << s.d << " m) is not finite: " << what
+      << " (the case's numbers are outside what double precision carries)";
+    throw std::runtime_error(m.str());
+  };
+  check(s.d, "d");
+  check(s.energy, "energy");
+  for (const Pose& p : s.poses) check(p.x + p.y + p.angle, "a block's pose");
+  for (const Reaction& x : s.reactions) check(x.force.x() + x.force.y() + x.moment, "reaction of '" + x.support + "'");
+  for (const JointForce& f : s.forces) check(f.normal + f.shear + f.point.x() + f.point.y(), "a joint force");
+  for (const OpenCorner& o : s.open_corners) check(o.gap, "a corner gap");
 }
 
 }  // namespace masonry

@@ -78,6 +78,10 @@ struct RunResult {
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // method-specific, top level
 };
 
+// Throws std::runtime_error naming the step and the quantity when a record holds a number that
+// is not finite: a run whose state turned non-finite stops with an error, never a result.
+void require_finite(const StepRecord& s);
+
 nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
 // One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.
 std::string steps_csv(const RunResult& r);

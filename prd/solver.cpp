@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "interfaces.hpp"
+#include "glpk_hooks.hpp"
 #include "prd.hpp"
 
 namespace masonry {
@@ -886,6 +887,7 @@ PrdSettings PrdSettings::from_case(const Case& c) {
 }
 
 PrdCheck prd_check(const Case& c, double contact_tolerance) {
+  prd::install_glpk_hooks();
   Model m = build_model(c, contact_tolerance);
   PrdCheck out;
   out.joints = joint_infos(m);
@@ -915,6 +917,7 @@ PrdCheck prd_check(const Case& c, double contact_tolerance) {
 }
 
 RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(const RunResult&)>& on_step) {
+  prd::install_glpk_hooks();
   if (!(s.step > 0) || !std::isfinite(s.step)) throw std::invalid_argument("prd: the step must be a positive number");
   if (s.max_steps < 0) throw std::invalid_argument("prd: max_steps must not be negative");
   if (!(s.contact_tolerance > 0)) throw std::invalid_argument("prd: the contact tolerance must be positive");
@@ -1092,6 +1095,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
       read_forces(m, rec);
       lp_check_fields(m, h, rec);
       if (s.sliding_check) sliding_check(m, sliding, rec);
+      require_finite(rec);
       r.steps.push_back(rec);
       r.capacity = cur.d;
       r.stable_steps = cur.index;

@@ -2,6 +2,8 @@
 // detection against hand-drawn geometry.
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "case.hpp"
@@ -137,12 +139,12 @@ TEST(CaseErrors, NonFiniteNumbers) {
 
 TEST(CaseErrors, NonPositiveDensityOrDepth) {
   expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 0})"),
-               {"block 'b'", "density", "positive"});
+               {"block 'b'", "density", "outside (0, "});
   expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": -5})"),
-               {"block 'b'", "density", "positive"});
+               {"block 'b'", "density", "outside (0, "});
   expect_error(with_blocks(std::string(kGround) +
                            R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1, "depth": 0})"),
-               {"block 'b'", "depth", "positive"});
+               {"block 'b'", "depth", "outside (0, "});
   expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]]})"),
                {"block 'b'", "density", "required"});
 }
@@ -279,3 +281,68 @@ TEST(WithOption, BadKeysAndValuesGetTheLoadersError) {
   EXPECT_NE(message("blocks", 1.0).find("not an option"), std::string::npos);
   EXPECT_NE(message("motion.step", "big").find("step"), std::string::npos);
 }
+
+namespace masonry {
+namespace {
+
+// Out-of-range quantities (the README's ranges) are refused before any solver sees them: each
+// value below made GLPK abort or left NaN in results with exit code 0, or a capacity silently
+// wrong (a scene 1e15 m from the origin keeps no digit of a 1e-5 m contact tolerance).
+TEST(CaseErrors, QuantitiesOutsideTheirRangeAreRefusedNamingTheField) {
+  const std::string path = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json";
+  const Case block = load_case(path);
+  struct Bad {
+    std::string key;
+    nlohmann::json value;
+    std::string field;
+  };
+  const std::vector<Bad> options = {
+      {"gravity", 1e308, "gravity"},
+      {"motion.step", 1e-300, "step"},
+      {"prd.event_tolerance", 1e308, "event_tolerance"},
+      {"prd.max_step", 1e308, "max_step"},
+      {"prd.contact_tolerance", 10.0, "contact_tolerance"},
+      {"dem.stiffness_reduction", 1e308, "stiffness_reduction"},
+      {"dem.kn", 1e300, "kn"},
+      {"dem.hold_time", 1e300, "hold_time"},
+  };
+  for (const Bad& b : options) {
+    try {
+      with_option(block, b.key, b.value);
+      ADD_FAILURE() << b.key << " accepted";
+    } catch (const CaseError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("field '" + b.field + "'"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("outside"), std::string::npos) << msg;
+    }
+  }
+  // Geometry and motion: edit the document.
+  const nlohmann::json doc = nlohmann::json::parse(case_to_json(block));
+  auto refused = [&](const std::function<void(nlohmann::json&)>& edit, const std::string& field) {
+    nlohmann::json d = doc;
+    edit(d);
+    const std::string msg = error_of(d.dump());
+    EXPECT_NE(msg.find("field '" + field + "'"), std::string::npos) << field << ": " << msg;
+  };
+  refused([](nlohmann::json& d) { d["blocks"][1]["density"] = 1e308; }, "density");
+  refused([](nlohmann::json& d) { d["blocks"][1]["depth"] = 1e308; }, "depth");
+  refused([](nlohmann::json& d) { d["motion"]["supports"][0]["rotation"] = 1e308; }, "rotation");
+  refused([](nlohmann::json& d) { d["motion"]["supports"][0]["translation"] = {1e308, 0}; }, "translation");
+  refused([](nlohmann::json& d) { d["motion"]["supports"][0]["about"] = {1e308, 0}; }, "about");
+  // The whole scene scaled by 1e120, or moved by 1e15 m.
+  for (double scale : {1e120, 1.0}) {
+    nlohmann::json d = doc;
+    for (auto& b : d["blocks"])
+      for (auto& v : b["vertices"]) v = {v[0].get<double>() * scale + (scale == 1.0 ? 1e15 : 0.0), v[1].get<double>() * scale};
+    d["motion"]["supports"][0]["about"] = {0.0, 0.0};
+    const std::string msg = error_of(d.dump());
+    EXPECT_NE(msg.find("field 'vertices'"), std::string::npos) << msg;
+  }
+  // Nothing loads the structure.
+  refused([](nlohmann::json& d) { d["gravity"] = 0.0; }, "gravity");
+  EXPECT_NE(error_of([&] { nlohmann::json d = doc; d["gravity"] = 0.0; return d.dump(); }()).find("nothing loads"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace masonry

@@ -145,5 +145,30 @@ TEST(PrdExtremes, AdaptiveRunsScaleKeepTheirToleranceAndTip) {
   EXPECT_LT(r.timing.lp_solves, 40);
 }
 
+// A case no loader would pass (coordinates of 1e119 m), built in code: GLPK cannot scale its LP
+// and fails an internal assertion. The process ends with exit code 2 and one line on stderr
+// naming GLPK, not with abort() and the assertion on stdout.
+TEST(PrdExtremesDeathTest, GlpkInternalErrorIsOneLineAndExitCodeTwo) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  Case c;
+  c.source = c.name = "huge";
+  Block g, b;
+  g.id = "ground";
+  g.support = true;
+  g.vertices = {Vec2(-6e119, -1e119), Vec2(6e119, -1e119), Vec2(6e119, 0), Vec2(-6e119, 0)};
+  b.id = "block";
+  b.density = 2000;
+  b.vertices = {Vec2(-1e119, 0), Vec2(1e119, 0), Vec2(1e119, 4e119), Vec2(-1e119, 4e119)};
+  c.blocks = {g, b};
+  SupportMotion m;
+  m.block = 0;
+  m.rotation = 1.0;
+  m.about = Vec2(0, -5e118);
+  c.motion.supports = {m};
+  c.motion.step = 0.0174533;
+  c.motion.max_steps = 60;
+  EXPECT_EXIT(prd_run(c, PrdSettings::from_case(c)), testing::ExitedWithCode(2), "masonry: the LP solver \\(GLPK\\) stopped");
+}
+
 }  // namespace
 }  // namespace masonry
