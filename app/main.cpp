@@ -1,6 +1,7 @@
 #include <exception>
 #include <iostream>
 
+#include "case.hpp"
 #include "command.hpp"
 
 int main(int argc, char** argv) {
@@ -40,10 +41,11 @@ int main(int argc, char** argv) {
       return c.run();
     } catch (const std::exception& e) {
       // One line, whatever went wrong: the message names the file, block and field.
+      // Control characters from a case (an ANSI escape) are escaped, a huge echoed value cut.
       std::string msg = e.what();
       for (char& ch : msg)
         if (ch == '\n') ch = ' ';
-      std::cerr << "masonry " << c.app->get_name() << ": " << msg << "\n";
+      std::cerr << "masonry " << c.app->get_name() << ": " << masonry::printable(msg, 2000) << "\n";
       return 2;
     }
   }

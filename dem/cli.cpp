@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "convergence.hpp"
 #include "dem.hpp"
+#include "interfaces.hpp"
 #include "prd.hpp"
 #include "variants.hpp"
 
@@ -58,6 +59,21 @@ int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
   return v.ok ? 0 : 1;
 }
 
+// Warns before a run whose time step makes each second of model time expensive (very stiff
+// joints, tiny blocks): about 80 ns per contact point per cycle on the reference machine
+// (README, "Speed"), two contact points per joint, one cycle per time step. Settling under
+// gravity alone takes some tenths of a second of model time; a hold may last up to hold_time.
+void warn_dem_cost(const Case& c, const DemSettings& s) {
+  const DemModel probe(c, s);
+  const double points = 2.0 * static_cast<double>(detect_interfaces(c, c.prd.contact_tolerance).size());
+  const double per_model_second = 80e-9 * points / probe.dt();
+  if (per_model_second < 60) return;
+  std::fprintf(stderr,
+               "dem: time step %.3g s (kn %.3g Pa/m, %.0f contact points): each second of model time costs about %.3g s of CPU "
+               "here, and a hold may last up to %.3g s of model time\n",
+               probe.dt(), probe.kn(), points, per_model_second, s.hold_time);
+}
+
 }  // namespace
 
 void add_dem_commands(CLI::App& app, Commands& out) {
@@ -105,6 +121,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    if (o->ramp) s.ramp_fraction = *o->ramp;
                    if (o->drift) s.collapse_drift = *o->drift;
                    if (o->open_gap) s.open_gap = *o->open_gap;
+                   if (!o->quiet) warn_dem_cost(c, s);
                    if (o->convergence) return run_convergence(c, s, *o);
                    const RunResult r = dem_run(c, s, [&](const RunResult& part) {
                      write_results(o->out_dir, part, c);

@@ -122,24 +122,36 @@ struct DemModel::Impl {
 };
 
 void DemModel::Impl::setup() {
+  // Settings come from the case's dem section or from the command line: a refusal names the
+  // file and the case field (the option of the same name), with the value.
+  auto refuse = [&](const char* field, double value, const char* rule) {
+    std::ostringstream m;
+    m << c.source << ": dem: field '" << field << "' = " << value << " " << rule;
+    throw std::runtime_error(m.str());
+  };
   const std::pair<const char*, double> numbers[] = {
       {"young_modulus", s.young_modulus},   {"poisson", s.poisson},         {"stiffness_reduction", s.stiffness_reduction},
       {"hold_time", s.hold_time},           {"move_time", s.move_time},     {"step", s.step},
       {"equilibrium_tolerance", s.equilibrium_tolerance}, {"velocity_tolerance", s.velocity_tolerance},
       {"collapse_drift", s.collapse_drift}, {"open_gap", s.open_gap},       {"kn", s.kn.value_or(1.0)},
-      {"ks", s.ks.value_or(1.0)},           {"kinetic_ratio", s.kinetic_ratio}, {"bracket_fraction", s.bracket_fraction}};
+      {"ks", s.ks.value_or(1.0)},           {"kinetic_ratio", s.kinetic_ratio}, {"bracket_fraction", s.bracket_fraction},
+      {"friction_angle", s.friction_angle}, {"damping", s.damping},         {"ramp_fraction", s.ramp_fraction}};
   for (const auto& [name, v] : numbers)
-    if (!std::isfinite(v)) throw std::runtime_error(std::string("dem: setting ") + name + " must be a finite number");
-  if (!(s.friction_angle >= 0 && s.friction_angle <= 90)) throw std::runtime_error("dem: friction angle must lie in [0, 90] degrees");
-  if (!(s.damping >= 0 && s.damping < 1)) throw std::runtime_error("dem: damping must lie in [0, 1)");
-  if (!(s.stiffness_reduction > 0)) throw std::runtime_error("dem: stiffness reduction must be positive");
-  if (!(s.young_modulus > 0) || !(s.poisson > -1 && s.poisson < 0.5)) throw std::runtime_error("dem: need E > 0 and -1 < nu < 0.5");
-  if (!(s.hold_time > 0) || !(s.move_time >= 0)) throw std::runtime_error("dem: hold time must be positive and move time >= 0");
-  if (!(s.kinetic_ratio > 0)) throw std::runtime_error("dem: kinetic ratio must be positive");
-  if (!(s.bracket_fraction >= 0 && s.bracket_fraction < 1)) throw std::runtime_error("dem: bracket fraction must lie in [0, 1)");
-  if (!(s.ramp_fraction >= 0 && s.ramp_fraction <= 0.5)) throw std::runtime_error("dem: ramp fraction must lie in [0, 0.5]");
-  if (!(s.equilibrium_tolerance > 0) || !(s.velocity_tolerance > 0)) throw std::runtime_error("dem: tolerances must be positive");
-  if (!(s.step > 0) || s.max_steps < 0) throw std::runtime_error("dem: need step > 0 and max_steps >= 0");
+    if (!std::isfinite(v)) refuse(name, v, "is not a finite number");
+  if (!(s.friction_angle >= 0 && s.friction_angle <= 90)) refuse("friction_angle", s.friction_angle, "must lie in [0, 90] degrees");
+  if (!(s.damping >= 0 && s.damping < 1)) refuse("damping", s.damping, "must lie in [0, 1)");
+  if (!(s.stiffness_reduction > 0)) refuse("stiffness_reduction", s.stiffness_reduction, "must be positive");
+  if (!(s.young_modulus > 0)) refuse("young_modulus", s.young_modulus, "must be positive (Pa)");
+  if (!(s.poisson > -1 && s.poisson < 0.5)) refuse("poisson", s.poisson, "must lie in (-1, 0.5)");
+  if (!(s.hold_time > 0)) refuse("hold_time", s.hold_time, "must be positive (s)");
+  if (!(s.move_time >= 0)) refuse("move_time", s.move_time, "must be >= 0 (s)");
+  if (!(s.kinetic_ratio > 0)) refuse("kinetic_ratio", s.kinetic_ratio, "must be positive");
+  if (!(s.bracket_fraction >= 0 && s.bracket_fraction < 1)) refuse("bracket_fraction", s.bracket_fraction, "must lie in [0, 1)");
+  if (!(s.ramp_fraction >= 0 && s.ramp_fraction <= 0.5)) refuse("ramp_fraction", s.ramp_fraction, "must lie in [0, 0.5]");
+  if (!(s.equilibrium_tolerance > 0)) refuse("equilibrium_tolerance", s.equilibrium_tolerance, "must be positive");
+  if (!(s.velocity_tolerance > 0)) refuse("velocity_tolerance", s.velocity_tolerance, "must be positive (m/s)");
+  if (!(s.step > 0)) refuse("step", s.step, "(motion.step) must be positive (m)");
+  if (s.max_steps < 0) refuse("max_steps", s.max_steps, "(motion.max_steps) must be >= 0");
   nb = static_cast<int>(c.blocks.size());
   support.assign(nb, 0);
   mass.assign(nb, 0);
@@ -174,7 +186,9 @@ void DemModel::Impl::setup() {
       const double area = std::abs(signed_area(bl.vertices));
       mass[b] = block_mass(bl);
       inertia[b] = bl.density * bl.depth * polar_moment(bl.vertices);
-      if (!(mass[b] > 0) || !(inertia[b] > 0)) throw std::runtime_error("dem: block '" + bl.id + "' has no mass (density 0?)");
+      if (!(mass[b] > 0) || !(inertia[b] > 0) || !std::isfinite(mass[b]) || !std::isfinite(inertia[b]))
+        throw std::runtime_error(c.source + ": block '" + bl.id + "': field 'density': the block's mass (" + std::to_string(mass[b]) +
+                                 " kg) or moment of inertia is not positive and finite");
       gyr[b] = std::sqrt(inertia[b] / mass[b]);
       wref[b] = mass[b] * c.gravity;
       area_sum += area;
@@ -193,7 +207,7 @@ void DemModel::Impl::setup() {
       }
     }
   }
-  if (nfree == 0) throw std::runtime_error("dem: the case has no free block");
+  if (nfree == 0) throw std::runtime_error(c.source + ": blocks: the case has no free block");
   pos = c0;
   world_v = local_v;
   world_n = local_n;
@@ -213,7 +227,8 @@ void DemModel::Impl::setup() {
   tan_phi = s.friction_angle >= 90 ? INFINITY : std::tan(s.friction_angle * M_PI / 180);
   if (!(kn > 0) || !(ks > 0) || !std::isfinite(kn) || !std::isfinite(ks)) {
     std::ostringstream m;
-    m << "dem: joint stiffnesses must be positive and finite (kn " << kn << " Pa/m, ks " << ks << " Pa/m)";
+    m << c.source << ": dem: fields 'kn', 'ks' (or 'young_modulus' / 'stiffness_reduction'): the joint stiffnesses must be positive "
+      << "and finite (kn " << kn << " Pa/m, ks " << ks << " Pa/m)";
     throw std::runtime_error(m.str());
   }
 
@@ -233,7 +248,7 @@ void DemModel::Impl::setup() {
   dt_crit = 2 / std::sqrt(lam);
   if (!(s.timestep_factor > 0) || !std::isfinite(s.timestep_factor) || (s.timestep_factor > 1 && !s.allow_unstable_timestep)) {
     std::ostringstream m;
-    m << "dem: time-step factor " << s.timestep_factor << " is outside (0, 1]: the time step would be "
+    m << c.source << ": dem: field 'timestep_factor' = " << s.timestep_factor << " is outside (0, 1]: the time step would be "
       << s.timestep_factor * dt_crit << " s against a stability limit of " << dt_crit
       << " s (kn " << kn << " Pa/m, lightest/stiffest block); refusing to run an unstable integration";
     throw std::runtime_error(m.str());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -93,6 +94,23 @@ Vec2 dead_load_resultant(const Case& c) {
   return f;
 }
 
+std::string printable(const std::string& text, size_t max) {
+  std::string out;
+  const size_t n = std::min(text.size(), max);
+  for (size_t i = 0; i < n; ++i) {
+    const unsigned char ch = static_cast<unsigned char>(text[i]);
+    if (ch < 0x20 || ch == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", ch);
+      out += b;
+    } else {
+      out += static_cast<char>(ch);
+    }
+  }
+  if (text.size() > max) out += "... (" + std::to_string(text.size()) + " characters)";
+  return out;
+}
+
 namespace {
 
 // Line and column of a byte offset, for JSON syntax errors.
@@ -121,7 +139,7 @@ struct Reader {
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       bool known = false;
       for (const char* k : keys) known = known || it.key() == k;
-      if (!known) fail(where, "unknown field '" + it.key() + "'");
+      if (!known) fail(where, "unknown field '" + printable(it.key()) + "'");
     }
   }
 
@@ -173,7 +191,7 @@ struct Reader {
     auto it = obj.find("block");
     if (it == obj.end() || !it->is_string()) fail(where, "field 'block' must name a block");
     const int b = c.block_index(it->get<std::string>());
-    if (b < 0) fail(where, "field 'block': no block '" + it->get<std::string>() + "'");
+    if (b < 0) fail(where, "field 'block': no block '" + printable(it->get<std::string>()) + "'");
     return b;
   }
 };
@@ -207,7 +225,7 @@ void check_scales(const Case& c, const Reader& r) {
   for (const SupportMotion& m : c.motion.supports) {
     const double travel = c.motion.step * c.motion.max_steps * (m.translation.norm() + std::abs(m.rotation) * L);
     if (!std::isfinite(travel) || travel > kMaxCoordinate)
-      r.fail("motion of block '" + c.blocks[m.block].id + "'", "the support would travel beyond 1e5 m over max_steps");
+      r.fail("motion of block '" + printable(c.blocks[m.block].id) + "'", "the support would travel beyond 1e5 m over max_steps");
   }
 }
 
@@ -246,7 +264,7 @@ Case parse_case(const std::string& text, const std::string& source) {
   c.source = source;
   r.only(doc, "case", {"format", "name", "description", "gravity", "blocks", "loads", "motion", "prd", "dem"});
   const std::string format = r.string(doc, "case", "format", "masonry-case/1");
-  if (format != "masonry-case/1") r.fail("case", "field 'format': expected \"masonry-case/1\", got \"" + format + "\"");
+  if (format != "masonry-case/1") r.fail("case", "field 'format': expected \"masonry-case/1\", got \"" + printable(format) + "\"");
   c.name = r.string(doc, "case", "name", source);
   c.description = r.string(doc, "case", "description", "");
   c.gravity = r.number(doc, "case", "gravity", 9.81);
@@ -259,7 +277,7 @@ Case parse_case(const std::string& text, const std::string& source) {
     const json& jb = doc["blocks"][i];
     std::string where = "block #" + std::to_string(i);
     if (jb.is_object() && jb.contains("id") && jb["id"].is_string())
-      where = "block '" + jb["id"].get<std::string>() + "'";
+      where = "block '" + printable(jb["id"].get<std::string>()) + "'";
     r.only(jb, where, {"id", "vertices", "depth", "density", "support"});
     Block b;
     if (!jb.contains("id") || !jb["id"].is_string() || jb["id"].get<std::string>().empty())
@@ -297,7 +315,7 @@ Case parse_case(const std::string& text, const std::string& source) {
       r.only(jl, where, {"block", "force", "point"});
       Load l;
       l.block = r.block_ref(c, jl, where);
-      if (c.blocks[l.block].support) r.fail(where, "field 'block': '" + c.blocks[l.block].id + "' is a support; loads go on free blocks");
+      if (c.blocks[l.block].support) r.fail(where, "field 'block': '" + printable(c.blocks[l.block].id) + "' is a support; loads go on free blocks");
       if (!jl.contains("force")) r.fail(where, "field 'force' is required");
       l.force = r.point(jl["force"], where, "force");
       r.range(l.force.norm(), 0, kMaxForce, where, "force", "N (magnitude)");
@@ -327,7 +345,7 @@ Case parse_case(const std::string& text, const std::string& source) {
         r.only(js, where, {"block", "translation", "rotation", "about"});
         SupportMotion s;
         s.block = r.block_ref(c, js, where);
-        where = "motion of block '" + c.blocks[s.block].id + "'";
+        where = "motion of block '" + printable(c.blocks[s.block].id) + "'";
         if (!c.blocks[s.block].support) r.fail(where, "field 'block': not a support block (add \"support\": true)");
         if (!seen.insert(s.block).second) r.fail(where, "field 'block': motion given twice");
         if (js.contains("translation")) s.translation = r.point(js["translation"], where, "translation");
@@ -415,7 +433,7 @@ Case parse_case(const std::string& text, const std::string& source) {
   for (const Interface& f : ifs) touched[f.i] = touched[f.j] = 1;
   for (size_t i = 0; i < c.blocks.size(); ++i)
     if (!touched[i] && !c.blocks[i].support)
-      r.fail("block '" + c.blocks[i].id + "'", "field 'vertices': the block touches no other block");
+      r.fail("block '" + printable(c.blocks[i].id) + "'", "field 'vertices': the block touches no other block");
   return c;
 }
 
@@ -488,7 +506,7 @@ std::string case_to_json(const Case& c) {
 }
 
 Case with_option(const Case& c, const std::string& key, const nlohmann::json& value) {
-  const std::string source = c.source + " [" + key + "=" + value.dump() + "]";
+  const std::string source = c.source + " [" + printable(key) + "=" + printable(value.dump()) + "]";
   nlohmann::json doc = nlohmann::json::parse(case_to_json(c));
   // Walk the dotted path through objects; the last name may be new (an optional field such as
   // dem.kn), the loader rejects names it does not know.

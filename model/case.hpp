@@ -102,6 +102,11 @@ struct Case {
   int block_index(const std::string& id) const;  // -1 if absent
 };
 
+// Text from a case (ids, names, field names) as it may be shown on a terminal: control characters
+// (an ANSI escape, a newline) written as \xNN, and more than `max` characters shortened to their
+// beginning and a count, so a message stays one readable line whatever the input held.
+std::string printable(const std::string& text, size_t max = 80);
+
 // Parses and validates a case (JSON text). `source` names the file in messages.
 Case parse_case(const std::string& text, const std::string& source);
 // Reads, parses and validates a case file.

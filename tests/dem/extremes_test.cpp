@@ -165,6 +165,7 @@ TEST(DemExtremes, NonsenseSettingsAreRefused) {
       ADD_FAILURE() << what << " accepted";
     } catch (const std::runtime_error& e) {
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind(c.source + ": ", 0), 0u) << e.what();  // names the file
     }
   };
   DemSettings s = DemSettings::from_case(c);
@@ -172,13 +173,13 @@ TEST(DemExtremes, NonsenseSettingsAreRefused) {
   refused(s, "stiffnesses must be positive");
   s = DemSettings::from_case(c);
   s.hold_time = INFINITY;
-  refused(s, "hold_time");
+  refused(s, "field 'hold_time'");
   s = DemSettings::from_case(c);
   s.friction_angle = 91;
-  refused(s, "friction angle");
+  refused(s, "field 'friction_angle' = 91");
   s = DemSettings::from_case(c);
   s.young_modulus = NAN;
-  refused(s, "young_modulus");
+  refused(s, "field 'young_modulus'");
 }
 
 TEST(DemExtremes, BlowUpStopsTheRunInsteadOfBeingRecorded) {

@@ -93,6 +93,28 @@ TEST(CaseErrors, ZeroArea) {
 TEST(CaseErrors, SelfIntersection) {
   expect_error(with_blocks(std::string(kGround) + R"(, {"id": "bow", "vertices": [[0, 0], [1, 1], [1, 0], [0, 1]], "density": 1})"),
                {"block 'bow'", "vertices", "self-intersecting"});
+  // A comb of 2000 teeth (8002 vertices) whose last tooth is bent back across the first: the
+  // crossing edges are thousands of vertices apart, and a tooth tip touching its neighbour's
+  // counts too.
+  auto comb = [](bool bent, bool touching) {
+    // Counter-clockwise: the spine's bottom, then leftwards over the teeth (k = 1999 .. 0).
+    nlohmann::json v = {{0.0, -0.05}, {2.0, -0.05}, {2.0, 0.0}};
+    for (int k = 1999; k >= 0; --k) {
+      const double x = 0.001 * k;
+      v.push_back({x + 0.0004, 0.0});
+      v.push_back({touching && k == 10 ? 0.011 : x + 0.0004, 0.1});  // touching: reaches tooth 11
+      // bent: the first tooth visited dives into the last one (k = 0), across every tooth between.
+      v.push_back({bent && k == 1999 ? 0.0002 : x, bent && k == 1999 ? 0.05 : 0.1});
+      v.push_back({x, 0.0});
+    }
+    return nlohmann::json{{"format", "masonry-case/1"}, {"name", "t"},
+                          {"blocks", {{{"id", "ground"}, {"vertices", {{-1, -1}, {3, -1}, {3, -0.05}, {-1, -0.05}}}, {"support", true}},
+                                      {{"id", "comb"}, {"vertices", v}, {"density", 1}}}}}
+        .dump();
+  };
+  EXPECT_EQ(error_of(comb(false, false)), "");
+  expect_error(comb(true, false), {"block 'comb'", "vertices", "self-intersecting"});
+  expect_error(comb(false, true), {"block 'comb'", "vertices", "self-intersecting"});
 }
 
 TEST(CaseErrors, OverlappingBlocks) {
@@ -342,6 +364,26 @@ TEST(CaseErrors, QuantitiesOutsideTheirRangeAreRefusedNamingTheField) {
   refused([](nlohmann::json& d) { d["gravity"] = 0.0; }, "gravity");
   EXPECT_NE(error_of([&] { nlohmann::json d = doc; d["gravity"] = 0.0; return d.dump(); }()).find("nothing loads"),
             std::string::npos);
+}
+
+}  // namespace
+}  // namespace masonry
+
+namespace masonry {
+namespace {
+
+// Text from a case reaches messages escaped and shortened: one readable line, whatever it held.
+TEST(CaseErrors, EchoedInputIsEscapedAndShortened) {
+  EXPECT_EQ(printable("a\x1b[31mb\n"), "a\\x1b[31mb\\x0a");
+  EXPECT_EQ(printable(std::string(100, 'x'), 10), "xxxxxxxxxx... (100 characters)");
+  const std::string long_key = std::string(200000, 'k');
+  const std::string msg = error_of(with_blocks(std::string(kGround), ", \"" + long_key + "\": 1"));
+  EXPECT_LT(msg.size(), 300u) << msg.size();
+  EXPECT_NE(msg.find("unknown field"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(200000 characters)"), std::string::npos);
+  const std::string escaped = error_of(with_blocks(std::string(kGround) + R"(, {"id": "b\u001b[2J", "vertices": [[5, 5], [6, 5], [6, 6], [5, 6]], "density": 1})"));
+  EXPECT_EQ(escaped.find('\x1b'), std::string::npos) << escaped;
+  EXPECT_NE(escaped.find("block 'b\\x1b[2J'"), std::string::npos) << escaped;
 }
 
 }  // namespace
