@@ -1,12 +1,16 @@
 // `masonry cases`: the case generators and the standard scenes on the command line.
 //   masonry cases --list
 //   masonry cases NAME --out FILE [parameters]   (NAME --help lists the parameters)
+//   masonry cases import DRAWING.dxf --out FILE [options]
+//   masonry cases show CASE --svg FILE
 #include <cmath>
 #include <iostream>
 #include <memory>
 
 #include "command.hpp"
+#include "dxf.hpp"
 #include "generators.hpp"
+#include "show.hpp"
 #include "results.hpp"
 
 namespace masonry {
@@ -155,7 +159,45 @@ void add_case_commands(CLI::App& app, Commands& out) {
             "Standard scene: the cathedral, third pier settling 1 cm and turning 0.001 rad per step",
             standard_cathedral_settlement_rotation(), "cathedral-settlement-rotation");
 
-  out.push_back({cmd, [cmd, list, file, gens]() -> int {
+  // Import a drawing.
+  auto imp = std::make_shared<DxfImportOptions>();
+  auto drawing = std::make_shared<std::string>();
+  auto import_out = std::make_shared<std::string>();
+  CLI::App* import_cmd = cmd->add_subcommand(
+      "import", "A DXF drawing's closed polylines as a case: layer SUPPORT* supports, IGNORE* skipped, others free blocks "
+                "(cases/README.md, 'Importing a drawing')");
+  import_cmd->add_option("drawing", *drawing, "DXF drawing (ASCII)")->required();
+  import_cmd->add_option("--out,-o", *import_out, "Case file to write ('-': standard output)")->required();
+  import_cmd->add_option("--units", imp->units, "Drawing units: m, cm, mm, in, ft (default: the drawing's $INSUNITS)");
+  import_cmd->add_option("--density", imp->density, "Density of free blocks, kg/m3 (layers file entries take precedence)");
+  import_cmd->add_option("--depth", imp->depth, "Out-of-plane depth, m (default 1)")->capture_default_str();
+  import_cmd->add_option("--layers", imp->layers_file, "JSON {\"layers\": {NAME: {density, depth, support}}}");
+  import_cmd->add_option("--merge", imp->merge_file, "JSON fragment merged into the case: name, description, gravity, loads, motion, prd, dem");
+  import_cmd->add_option("--name", imp->name, "Case name (default: the drawing's file name)");
+  import_cmd->add_option("--arc-tolerance", imp->arc_tolerance, "Arcs (polyline bulges) become chords within this distance, m")
+      ->capture_default_str();
+  import_cmd->add_option("--snap", imp->snap, "Move vertices within this distance of another block onto it, m (default 0: off)");
+  import_cmd->add_option("--near-joint", imp->near_joint, "Report blocks that come this close without touching, m")
+      ->capture_default_str();
+  // Draw a case.
+  auto shown = std::make_shared<std::string>();
+  auto svg = std::make_shared<std::string>();
+  CLI::App* show_cmd = cmd->add_subcommand("show", "Draw a case as SVG: blocks and ids, supports hatched, joints, loads, support motion");
+  show_cmd->add_option("case", *shown, "Case file (masonry-case/1)")->required();
+  show_cmd->add_option("--svg", *svg, "SVG file to write")->required();
+
+  out.push_back({cmd, [cmd, list, file, gens, import_cmd, imp, drawing, import_out, show_cmd, shown, svg]() -> int {
+                   if (import_cmd->parsed()) {
+                     const DxfImport r = import_dxf(*drawing, *imp);
+                     for (const std::string& n : r.notes) std::cerr << "cases import: " << n << "\n";
+                     return emit(r.c, *import_out);
+                   }
+                   if (show_cmd->parsed()) {
+                     const Case c = load_case(*shown);
+                     write_file_atomic(*svg, case_svg(c));
+                     std::cerr << "wrote " << *svg << " (" << c.blocks.size() << " blocks)\n";
+                     return 0;
+                   }
                    if (*list) {
                      std::cout << "generators and standard scenes (masonry cases NAME --out FILE; NAME --help):\n";
                      for (const Generator& g : *gens) std::cout << "  " << g.app->get_name() << "\n      " << g.summary << "\n";

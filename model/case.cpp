@@ -417,7 +417,6 @@ Case parse_case(const std::string& text, const std::string& source) {
     if (b.vertices.size() >= 3 && signed_area(b.vertices) < 0) std::reverse(b.vertices.begin(), b.vertices.end());
 
   validate_geometry(c);
-  check_scales(c, r);
 
   bool any_support = false, any_free = false;
   for (const Block& b : c.blocks) {
@@ -426,6 +425,7 @@ Case parse_case(const std::string& text, const std::string& source) {
   }
   if (!any_support) r.fail("blocks", "no support block (mark at least one with \"support\": true)");
   if (!any_free) r.fail("blocks", "no free block: every block is a support");
+  check_scales(c, r);
 
   // Every free block must touch something, or it would fall through any method.
   const std::vector<Interface> ifs = detect_interfaces(c, c.prd.contact_tolerance);

@@ -9,6 +9,7 @@ packages=(
   libbox2d-dev                     # DEM contact geometry
   nlohmann-json3-dev               # case and result files
   libcli11-dev                     # the command line
+  libdxflib-dev pkg-config         # masonry cases import: DXF drawings (pkg-config finds dxflib)
   libopenmpi-dev openmpi-bin       # masonry sweep across machines (mpirun); its tests start mpirun
   libgtest-dev                     # tests
   libbenchmark-dev                 # benchmarks
