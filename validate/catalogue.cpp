@@ -110,6 +110,30 @@ Quantity quantity_of(const std::string& s, const Where& w) {
                          "' (capacity, least_friction_angle, stands, threshold, reaction, reaction_balance, duality_gap)");
 }
 
+Expected expected_field(const json& x, Quantity q, const Where& w, const std::string& field) {
+  Expected out;
+  if (q == Quantity::stands) {
+    if (!x.is_boolean()) w.fail(field, "must be true (stands) or false (collapses)");
+    out.value = x.get<bool>() ? 1.0 : 0.0;
+  } else if (x.is_number()) {
+    out.value = x.get<double>();
+    if (!std::isfinite(out.value)) w.fail(field, "must be a finite number");
+  } else if (x.is_object()) {
+    only_fields(x, {"per_weight", "method"}, w, field + ".");
+    if (x.contains("per_weight") == x.contains("method")) w.fail(field, "needs exactly one of 'per_weight', 'method'");
+    if (x.contains("per_weight")) {
+      out.kind = Expected::Kind::per_weight;
+      out.value = number_field(x, "per_weight", w, field + ".");
+    } else {
+      out.kind = Expected::Kind::method;
+      out.method = method_of(string_field(x, "method", w, field + ".", true), w, field + ".method");
+    }
+  } else {
+    w.fail(field, "must be a number, {\"per_weight\": x} or {\"method\": \"prd\"}");
+  }
+  return out;
+}
+
 Benchmark parse_benchmark(const json& e, const Where& file_where, size_t index) {
   Where w = file_where;
   if (!e.is_object()) w.fail("benchmarks[" + std::to_string(index) + "]", "must be an object");
@@ -151,26 +175,7 @@ Benchmark parse_benchmark(const json& e, const Where& file_where, size_t index) 
 
   b.quantity = quantity_of(string_field(e, "quantity", w, "", true), w);
   if (!e.contains("expected")) w.fail("expected", "missing");
-  const json& x = e["expected"];
-  if (b.quantity == Quantity::stands) {
-    if (!x.is_boolean()) w.fail("expected", "must be true (stands) or false (collapses)");
-    b.expected.value = x.get<bool>() ? 1.0 : 0.0;
-  } else if (x.is_number()) {
-    b.expected.value = number_field(e, "expected", w, "");
-  } else if (x.is_object()) {
-    only_fields(x, {"per_weight", "method"}, w, "expected.");
-    if (x.contains("per_weight") == x.contains("method")) w.fail("expected", "needs exactly one of 'per_weight', 'method'");
-    if (x.contains("per_weight")) {
-      b.expected.kind = Expected::Kind::per_weight;
-      b.expected.value = number_field(x, "per_weight", w, "expected.");
-    } else {
-      b.expected.kind = Expected::Kind::method;
-      b.expected.method = method_of(string_field(x, "method", w, "expected.", true), w, "expected.method");
-    }
-  } else {
-    w.fail("expected", "must be a number, {\"per_weight\": x} or {\"method\": \"prd\"}");
-  }
-
+  b.expected = expected_field(e["expected"], b.quantity, w, "expected");
   if (b.quantity == Quantity::threshold) {
     if (!e.contains("search") || !e["search"].is_object()) w.fail("search", "missing (threshold needs parameter, range, resolution)");
     const json& s = e["search"];
@@ -206,14 +211,21 @@ Benchmark parse_benchmark(const json& e, const Where& file_where, size_t index) 
     MethodRun m;
     m.method = method_of(it.key(), w, "methods." + it.key());
     if (!it.value().is_object()) w.fail("methods." + it.key(), "must be an object with a tolerance");
-    only_fields(it.value(), {"tolerance", "options"}, w, p);
+    only_fields(it.value(), {"tolerance", "options", "expected", "source"}, w, p);
+    if (it.value().contains("expected")) {
+      m.expected = expected_field(it.value()["expected"], b.quantity, w, p + "expected");
+      m.source = string_field(it.value(), "source", w, p, true);
+    } else if (it.value().contains("source")) {
+      w.fail(p + "source", "only with the method's own 'expected'");
+    }
+    const Expected& ref = m.expected ? *m.expected : b.expected;
     // A yes/no answer needs no tolerance.
     if (b.quantity != Quantity::stands) m.tolerance = tolerance_field(it.value(), w, p);
     else if (it.value().contains("tolerance")) w.fail(p + "tolerance", "a yes/no quantity (stands) takes none");
     m.options = options_field(it.value(), w, p);
     const bool prd_only = b.quantity == Quantity::least_friction_angle || b.quantity == Quantity::duality_gap;
     if (prd_only && m.method != Method::prd) w.fail("methods." + it.key(), std::string(quantity_name(b.quantity)) + " is a PRD quantity");
-    if (b.expected.kind == Expected::Kind::method && b.expected.method == m.method)
+    if (ref.kind == Expected::Kind::method && ref.method == m.method)
       w.fail("methods." + it.key(), "cannot be judged against its own result (expected.method)");
     b.methods.push_back(std::move(m));
   }

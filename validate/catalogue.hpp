@@ -57,6 +57,10 @@ struct Expected {
 
 struct MethodRun {
   Method method = Method::prd;
+  // A reference of this method's own (the paper's 3DEC for the DEM beside its PRD for PRD),
+  // overriding the benchmark's expected value and source.
+  std::optional<Expected> expected;
+  std::string source;
   Tolerance tolerance;
   std::map<std::string, nlohmann::json> options;  // case options for this method only
 };

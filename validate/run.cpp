@@ -144,20 +144,21 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
     if (b.quantity == Quantity::threshold && b.search->parameter.find("friction_angle") != std::string::npos) row.unit = "deg";
     if (b.quantity == Quantity::threshold && b.search->parameter == "thickness") row.unit = "m";
     if (b.quantity == Quantity::reaction && b.component == "moment") row.unit = "N m";
-    row.expected_from = b.source;
+    const Expected& x = mr.expected ? *mr.expected : b.expected;
+    row.expected_from = mr.expected ? mr.source : b.source;
     bool have_expected = true;
-    switch (b.expected.kind) {
-      case Expected::Kind::value: row.expected = b.expected.value; break;
+    switch (x.kind) {
+      case Expected::Kind::value: row.expected = x.value; break;
       case Expected::Kind::per_weight:
-        row.expected = b.expected.value * dead_load_resultant(benchmark_case(cat, b, mr.method)).norm();
+        row.expected = x.value * dead_load_resultant(benchmark_case(cat, b, mr.method)).norm();
         break;
       case Expected::Kind::method: {
-        const Measured ref = measure(cat, b, b.expected.method, cache);
-        row.expected_from = std::string(b.expected.method == Method::prd ? "PRD" : "DEM") + " on the same case";
+        const Measured ref = measure(cat, b, x.method, cache);
+        row.expected_from = std::string(x.method == Method::prd ? "PRD" : "DEM") + " on the same case";
         if (ref.ok) row.expected = ref.value;
         else {
           have_expected = false;
-          row.note = "reference (" + std::string(method_name(b.expected.method)) + "): " + ref.note;
+          row.note = "reference (" + std::string(method_name(x.method)) + "): " + ref.note;
         }
         break;
       }

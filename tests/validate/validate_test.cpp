@@ -75,6 +75,9 @@ TEST(ValidateCatalogue, RefusesWithOneLineNamingFileBenchmarkAndField) {
       {one_benchmark(prd, "0.46", R"(, "colour": "red")"), "field 'colour': unknown field"},
       {one_benchmark(R"({"dem": {"tolerance": {"absolute": 0.1, "why": "x"}}})", "{\"method\": \"dem\"}"), "its own result"},
       {one_benchmark(prd, "\"tall\""), "field 'expected'"},
+      {one_benchmark(R"({"prd": {"source": "a paper", "tolerance": {"absolute": 0.02, "why": "x"}}})"),
+       "field 'methods.prd.source': only with the method's own 'expected'"},
+      {one_benchmark(R"({"prd": {"expected": 0.46, "tolerance": {"absolute": 0.02, "why": "x"}}})"), "field 'methods.prd.source': missing"},
   };
   for (const Bad& b : bad) {
     const std::string msg = one_line_error(b.text);
