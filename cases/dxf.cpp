@@ -189,17 +189,20 @@ struct LayerProps {
   std::optional<bool> support;
 };
 
-std::map<std::string, LayerProps> read_layers(const std::string& file) {
-  std::map<std::string, LayerProps> out;
-  if (file.empty()) return out;
+json read_json(const std::string& file, const char* what) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw CaseError(file + ": cannot open the layers file");
-  json doc;
+  if (!in) throw CaseError(file + ": cannot open " + what);
   try {
-    doc = json::parse(in);
+    return json::parse(in);
   } catch (const json::exception& e) {
     throw CaseError(file + ": malformed JSON: " + printable(e.what()));
   }
+}
+
+std::map<std::string, LayerProps> read_layers(const std::string& file) {
+  std::map<std::string, LayerProps> out;
+  if (file.empty()) return out;
+  const json doc = read_json(file, "the layers file");
   if (!doc.is_object() || !doc.contains("layers") || !doc["layers"].is_object())
     throw CaseError(file + ": must be {\"layers\": {\"NAME\": {\"density\": .., \"depth\": .., \"support\": ..}}}");
   for (auto it = doc["layers"].begin(); it != doc["layers"].end(); ++it) {
@@ -344,14 +347,7 @@ std::vector<std::string> near_joints(const std::vector<Piece>& ps, double tol, d
 
 json merge_fragment(const std::string& file) {
   if (file.empty()) return json::object();
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw CaseError(file + ": cannot open the fragment to merge");
-  json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::exception& e) {
-    throw CaseError(file + ": malformed JSON: " + printable(e.what()));
-  }
+  const json doc = read_json(file, "the fragment to merge");
   if (!doc.is_object()) throw CaseError(file + ": must be a JSON object");
   for (auto it = doc.begin(); it != doc.end(); ++it)
     if (it.key() != "name" && it.key() != "description" && it.key() != "gravity" && it.key() != "loads" && it.key() != "motion" &&

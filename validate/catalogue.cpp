@@ -285,50 +285,45 @@ Case generated(const std::string& name, const nlohmann::json& params, const Wher
     if (!v.is_boolean()) w.fail("case.parameters." + k, "must be true or false");
     return v.get<bool>();
   };
-  if (name == "circular-arch") {
-    CircularArch p;
-    for (auto it = params.begin(); it != params.end(); ++it) {
-      const std::string& k = it.key();
-      if (k == "radius") p.radius = num(k, *it);
-      else if (k == "thickness") p.thickness = num(k, *it);
-      else if (k == "embrace_deg") p.embrace = num(k, *it) * kDeg;
-      else if (k == "voussoirs") p.voussoirs = count(k, *it);
-      else if (k == "depth") p.depth = num(k, *it);
-      else if (k == "density") p.density = num(k, *it);
-      else if (k == "spreading") p.spreading = flag(k, *it);
-      else if (k == "step") p.step = num(k, *it);
-      else if (k == "max_steps") p.max_steps = count(k, *it);
-      else w.fail("case.parameters." + k, "unknown parameter of circular-arch (radius, thickness, embrace_deg, voussoirs, depth, "
-                                            "density, spreading, step, max_steps)");
-    }
+  // The parameters both arch generators share; a generator's own ones come first.
+  auto arch_parameter = [&](auto& p, const std::string& k, const nlohmann::json& v) {
+    if (k == "thickness") p.thickness = num(k, v);
+    else if (k == "embrace_deg") p.embrace = num(k, v) * kDeg;
+    else if (k == "voussoirs") p.voussoirs = count(k, v);
+    else if (k == "depth") p.depth = num(k, v);
+    else if (k == "density") p.density = num(k, v);
+    else if (k == "spreading") p.spreading = flag(k, v);
+    else if (k == "step") p.step = num(k, v);
+    else if (k == "max_steps") p.max_steps = count(k, v);
+    else return false;
+    return true;
+  };
+  auto build = [&](auto make, const auto& p) {
     try {
-      return circular_arch(p);
+      return make(p);
     } catch (const CaseError& e) {
       w.fail("case.parameters", e.what());
     }
+  };
+  const char* shared = "thickness, embrace_deg, voussoirs, depth, density, spreading, step, max_steps";
+  if (name == "circular-arch") {
+    CircularArch p;
+    for (auto it = params.begin(); it != params.end(); ++it) {
+      if (it.key() == "radius") p.radius = num(it.key(), *it);
+      else if (!arch_parameter(p, it.key(), *it))
+        w.fail("case.parameters." + it.key(), std::string("unknown parameter of circular-arch (radius, ") + shared + ")");
+    }
+    return build(circular_arch, p);
   }
   if (name == "pointed-arch") {
     PointedArch p = standard_pointed_arch();
     for (auto it = params.begin(); it != params.end(); ++it) {
-      const std::string& k = it.key();
-      if (k == "rcirc") p.rcirc = num(k, *it);
-      else if (k == "eccentricity") p.eccentricity = num(k, *it);
-      else if (k == "thickness") p.thickness = num(k, *it);
-      else if (k == "embrace_deg") p.embrace = num(k, *it) * kDeg;
-      else if (k == "voussoirs") p.voussoirs = count(k, *it);
-      else if (k == "depth") p.depth = num(k, *it);
-      else if (k == "density") p.density = num(k, *it);
-      else if (k == "spreading") p.spreading = flag(k, *it);
-      else if (k == "step") p.step = num(k, *it);
-      else if (k == "max_steps") p.max_steps = count(k, *it);
-      else w.fail("case.parameters." + k, "unknown parameter of pointed-arch (rcirc, eccentricity, thickness, embrace_deg, "
-                                            "voussoirs, depth, density, spreading, step, max_steps)");
+      if (it.key() == "rcirc") p.rcirc = num(it.key(), *it);
+      else if (it.key() == "eccentricity") p.eccentricity = num(it.key(), *it);
+      else if (!arch_parameter(p, it.key(), *it))
+        w.fail("case.parameters." + it.key(), std::string("unknown parameter of pointed-arch (rcirc, eccentricity, ") + shared + ")");
     }
-    try {
-      return pointed_arch(p);
-    } catch (const CaseError& e) {
-      w.fail("case.parameters", e.what());
-    }
+    return build(pointed_arch, p);
   }
   w.fail("case.generator", "unknown generator '" + name + "' (circular-arch, pointed-arch)");
 }

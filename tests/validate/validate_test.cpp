@@ -146,6 +146,22 @@ TEST(ValidateRun, ASearchThatDoesNotBracketTheThresholdFailsWithAReason) {
   EXPECT_NE(rows[0].note.find("stands at both ends"), std::string::npos) << rows[0].note;
 }
 
+TEST(ValidateRun, AGeneratorParameterItDoesNotKnowIsBadInput) {
+  const std::string text = R"({"format": "masonry-catalogue/1", "benchmarks": [{"name": "arch", "title": "t", "source": "s",
+    "case": {"generator": "circular-arch", "parameters": {"thickness": 0.12, "spreading": false, "max_steps": 0, "height": 2}},
+    "quantity": "stands", "expected": true, "methods": {"prd": {}}}]})";
+  const Catalogue cat = parse_catalogue(text, "g.json", ".");
+  RunCache cache;
+  try {
+    run_benchmark(cat, cat.benchmarks[0], cache);
+    ADD_FAILURE() << "ran with an unknown parameter";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("g.json: benchmark 'arch': field 'case.parameters.height': unknown parameter of circular-arch"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ValidateCommand, ExitCodesTablesAndFiles) {
   Scratch dir("validate");
   // Two cheap built-in benchmarks pass: exit 0, the table, the JSON and Markdown files.
