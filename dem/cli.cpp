@@ -127,9 +127,13 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                      write_results(o->out_dir, part, c);
                      if (o->quiet || part.steps.empty()) return;
                      const StepRecord& st = part.steps.back();
-                     std::fprintf(stderr, "dem: step %d d=%.6g m  cycles %lld (total %lld)  unbalanced %.2e  %s\n", st.index, st.d,
-                                  st.extra.value("cycles", 0LL), part.timing.cycles, st.extra.value("unbalanced_ratio", 0.0),
-                                  st.extra.value("hold_end", std::string("?")).c_str());
+                     // With the time the remaining increments would take at this pace if the run went to
+                     // max_steps (a collapse ends it sooner).
+                     const double t = part.timing.total_s;
+                     const double left = st.index > 0 ? t / st.index * std::max(0, s.max_steps - st.index) : 0.0;
+                     std::fprintf(stderr, "dem: step %d d=%.6g m  cycles %lld (total %lld)  unbalanced %.2e  %s  %.0f s, at most %.0f s more\n",
+                                  st.index, st.d, st.extra.value("cycles", 0LL), part.timing.cycles,
+                                  st.extra.value("unbalanced_ratio", 0.0), st.extra.value("hold_end", std::string("?")).c_str(), t, left);
                    });
                    write_results(o->out_dir, r, c);
                    if (!o->quiet)
