@@ -12,20 +12,8 @@ namespace masonry {
 
 namespace {
 
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char ch : printable(s, 200)) {
-    switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += ch;
-    }
-  }
-  return out;
-}
+// Case text as SVG text: control characters escaped and long ids shortened first.
+std::string svg_text(const std::string& s) { return xml_escape(printable(s, 200)); }
 
 std::string num(double x) {
   char b[32];
@@ -47,7 +35,7 @@ std::string case_svg(const Case& c) {
   o << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << num(lo.x() - margin) << " " << num(-hi.y() - margin) << " "
     << num(hi.x() - lo.x() + 2 * margin) << " " << num(hi.y() - lo.y() + 2 * margin) << "\" width=\"1000\">\n";
-  o << "<title>" << xml_escape(c.name) << " (m; supports hatched, joints red, loads and support motion blue)</title>\n";
+  o << "<title>" << svg_text(c.name) << " (m; supports hatched, joints red, loads and support motion blue)</title>\n";
   o << "<defs>\n"
     << "<pattern id=\"hatch\" patternUnits=\"userSpaceOnUse\" width=\"" << num(4 * font / 5) << "\" height=\"" << num(4 * font / 5)
     << "\" patternTransform=\"rotate(45)\"><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"" << num(4 * font / 5)
@@ -57,7 +45,7 @@ std::string case_svg(const Case& c) {
     << "</defs>\n";
   o << "<g id=\"blocks\">\n";
   for (const Block& b : c.blocks) {
-    o << "<polygon class=\"block" << (b.support ? " support" : "") << "\" data-id=\"" << xml_escape(b.id) << "\" points=\"";
+    o << "<polygon class=\"block" << (b.support ? " support" : "") << "\" data-id=\"" << svg_text(b.id) << "\" points=\"";
     for (size_t k = 0; k < b.vertices.size(); ++k) o << (k ? " " : "") << pt(b.vertices[k]);
     o << "\" fill=\"" << (b.support ? "url(#hatch)" : "#e8dcc4") << "\" stroke=\"#333\" stroke-width=\"" << num(stroke) << "\"/>\n";
   }
@@ -68,7 +56,7 @@ std::string case_svg(const Case& c) {
   o << "</g>\n<g id=\"ids\" font-family=\"sans-serif\" font-size=\"" << num(font) << "\" text-anchor=\"middle\">\n";
   for (const Block& b : c.blocks) {
     const Vec2 m = centroid(b.vertices);
-    o << "<text x=\"" << num(m.x()) << "\" y=\"" << num(-m.y() + font / 3) << "\">" << xml_escape(b.id) << "</text>\n";
+    o << "<text x=\"" << num(m.x()) << "\" y=\"" << num(-m.y() + font / 3) << "\">" << svg_text(b.id) << "</text>\n";
   }
   o << "</g>\n<g id=\"loads\" stroke=\"#1f5fbf\" fill=\"none\" stroke-width=\"" << num(2 * stroke) << "\">\n";
   // Loads: arrows ending at their point, the largest a tenth of the scene long.

@@ -206,22 +206,6 @@ double nice_step(double range, int n) {
   return (q < 1.5 ? 1 : q < 3 ? 2 : q < 7 ? 5 : 10) * p;
 }
 
-std::string xml_escape(const std::string& s) {
-  std::string o;
-  o.reserve(s.size());
-  for (char ch : s) {
-    switch (ch) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      case '\'': o += "&#39;"; break;
-      default: o += ch;
-    }
-  }
-  return o;
-}
-
 DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs) {
   DrawFrame f;
   Vec2 lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max()), hi = -lo;

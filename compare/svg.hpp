@@ -10,8 +10,7 @@
 
 namespace masonry {
 
-// Escapes & < > " ' for XML/HTML text and attribute values.
-std::string xml_escape(const std::string& s);
+// xml_escape: model/case.hpp.
 
 // A "nice" tick step (1, 2 or 5 times a power of ten) giving about n ticks over `range`.
 double nice_step(double range, int n);

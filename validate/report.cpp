@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "format.hpp"
+#include "report.hpp"  // md_escape
 #include "validate.hpp"
 
 namespace masonry {
@@ -48,15 +49,6 @@ std::vector<std::vector<std::string>> cells(const std::vector<ValidationRow>& ro
 
 const std::vector<std::string> kHeader = {"benchmark", "method", "quantity", "expected", "obtained", "error",
                                           "tolerance", "pass", "time", "source"};
-
-std::string md_escape(std::string s) {
-  std::string out;
-  for (char ch : s) {
-    if (ch == '|' || ch == '*' || ch == '_' || ch == '<' || ch == '>' || ch == '[' || ch == ']') out += '\\';
-    out += ch == '\n' ? ' ' : ch;
-  }
-  return out;
-}
 
 int passed(const std::vector<ValidationRow>& rows) {
   return static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const ValidationRow& r) { return r.pass; }));
