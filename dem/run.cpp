@@ -59,9 +59,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   RunResult r;
   r.method = "dem";
   r.case_name = c.name;
-  for (const Block& b : c.blocks)
-    if (!b.support) r.total_weight += block_mass(b) * c.gravity;
-  for (const Load& l : c.loads) r.total_weight -= l.force.y();
+  r.total_weight = total_weight(c);
   const std::vector<Interface> joints = detect_interfaces(c, c.prd.contact_tolerance);
   for (const Interface& J : joints) r.joints.push_back({J.i, J.j, J.a, J.b});
 

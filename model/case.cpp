@@ -94,6 +94,8 @@ Vec2 dead_load_resultant(const Case& c) {
   return f;
 }
 
+double total_weight(const Case& c) { return -dead_load_resultant(c).y(); }
+
 std::string printable(const std::string& text, size_t max) {
   std::string out;
   const size_t n = std::min(text.size(), max);

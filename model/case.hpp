@@ -138,5 +138,11 @@ double block_mass(const Block& b);
 // Resultant of the dead loads (the free blocks' weights and the point loads), N: what the
 // supports together carry in any equilibrium.
 Vec2 dead_load_resultant(const Case& c);
+// The total weight W, N: the vertical part of the dead-load resultant, downwards positive (the
+// free blocks' weights minus the loads' upward components), which is what the supports carry
+// vertically in any equilibrium. Thrusts are reported over it by both methods, so it has this one
+// definition: PRD once counted only downward loads and the DEM every vertical component, and an
+// upward load gave the two methods different W.
+double total_weight(const Case& c);
 
 }  // namespace masonry

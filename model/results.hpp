@@ -70,7 +70,7 @@ struct RunResult {
   bool collapsed = false;
   std::string stopped = "running";  // "collapse", "max_steps", "error" (or "running" while going)
   std::string message;
-  double total_weight = 0.0;    // N, of the free blocks plus loads' vertical parts
+  double total_weight = 0.0;    // N, masonry::total_weight(case): what the supports carry vertically
   std::vector<JointInfo> joints;
   std::vector<StepRecord> steps;
   Timing timing;

@@ -266,13 +266,6 @@ int solve(Model& m) {
   return glp_get_status(lp);
 }
 
-double total_weight(const Model& m) {
-  double w = 0;
-  for (double x : m.weight) w += x;
-  for (const Load& l : m.c->loads) w -= std::min(0.0, l.force.y());
-  return w;
-}
-
 std::vector<JointInfo> joint_infos(const Model& m) {
   std::vector<JointInfo> out;
   for (const Interface& f : m.joints) out.push_back({f.i, f.j, f.a, f.b});
@@ -891,7 +884,7 @@ PrdCheck prd_check(const Case& c, double contact_tolerance) {
   Model m = build_model(c, contact_tolerance);
   PrdCheck out;
   out.joints = joint_infos(m);
-  out.total_weight = total_weight(m);
+  out.total_weight = total_weight(*m.c);
   const double scale = std::max(scene_size(c), 1e-12) * 1e-3;
   update_lp(m, 0.0, scale);
   // A fresh LP: GLPK's standard basis (every row slack basic) makes the simplex bring each
@@ -954,7 +947,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   r.extra["events"] = nlohmann::ordered_json::array();
   Model m = build_model(c, s.contact_tolerance);
   r.joints = joint_infos(m);
-  r.total_weight = total_weight(m);
+  r.total_weight = total_weight(*m.c);
   auto sync_timing = [&] {
     r.timing.lp_s = m.lp_s;
     r.timing.lp_solves = m.lp_solves;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "dem.hpp"
+#include "prd.hpp"
 #include "util.hpp"
 
 namespace {
@@ -79,6 +80,35 @@ TEST(DemStack, NoDriftOverALongHold) {
     EXPECT_NEAR((m.block(b).position - before[b].position).norm(), 0, 1e-8) << "block " << b;
     EXPECT_NEAR(m.block(b).angle - before[b].angle, 0, 1e-8) << "block " << b;
   }
+}
+
+// One W for both methods (model::total_weight): with an upward and a sideways point load, PRD and
+// the DEM report the weight of the blocks minus the upward load (the vertical part of the dead-load
+// resultant, what the supports carry vertically), and the settled DEM's reactions carry exactly it.
+// PRD once left the upward load out (3 m g) and the DEM counted it, so thrusts over W differed.
+TEST(DemStack, BothMethodsReportTheSameWeightWithUpwardAndSidewaysLoads) {
+  Case c = stack_case();
+  const double mg = 2000 * 0.4 * 0.2 * 1.0 * c.gravity;  // one block
+  Load up;
+  up.block = 3;  // the top block
+  up.force = Vec2(0, 300.0);
+  up.point = Vec2(0, 0.5);
+  Load side;
+  side.block = 2;
+  side.force = Vec2(50.0, 0);
+  side.point = Vec2(0, 0.3);
+  c.loads = {up, side};
+  const double W = 3 * mg - 300.0;
+  EXPECT_NEAR(total_weight(c), W, 1e-12 * W);
+  const RunResult d = dem_run(c, DemSettings::from_case(c));
+  const RunResult p = prd_run(c, PrdSettings::from_case(c));
+  EXPECT_NEAR(d.total_weight, W, 1e-9 * W);
+  EXPECT_NEAR(p.total_weight, W, 1e-9 * W);
+  ASSERT_FALSE(d.steps.empty());
+  ASSERT_TRUE(d.steps[0].extra.value("settled", false));
+  ASSERT_EQ(d.steps[0].reactions.size(), 1u);
+  EXPECT_NEAR(d.steps[0].reactions[0].force.y(), W, 1e-3 * W);
+  EXPECT_NEAR(d.steps[0].reactions[0].force.x(), -50.0, 1e-3 * W);
 }
 
 }  // namespace
