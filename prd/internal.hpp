@@ -1,0 +1,197 @@
+// Internal to prd/: the solver's shared state and the functions its files hand each other.
+// lp.cpp is the layer over GLPK (the LP's variables and rows are described at its top);
+// motion.cpp the finite rigid motion and the contact state; events.cpp the event location of
+// adaptive runs; sliding.cpp the sliding check; run.cpp prd_check and the run loop.
+#pragma once
+
+#include <glpk.h>
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "case.hpp"
+#include "interfaces.hpp"
+#include "prd.hpp"
+#include "results.hpp"
+
+namespace masonry::prd_detail {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+inline Eigen::Matrix2d rot(double a) {
+  Eigen::Matrix2d r;
+  r << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  return r;
+}
+inline Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+struct GlpDeleter {
+  void operator()(glp_prob* p) const { glp_delete_prob(p); }
+};
+
+struct Endpoint {
+  int joint;
+  int corner;    // 0 = A, 1 = B
+  Vec2 X;        // material point (initial configuration), shared by both blocks at the start
+  bool closed = true;
+};
+
+struct Model {
+  const Case* c = nullptr;
+  double tol = 1e-5;
+  std::vector<Interface> joints;
+  std::vector<Endpoint> ends;  // 2 per joint: rows 2e+1 (normal) and 2e+2 (tangential)
+  std::vector<int> col;        // first GLPK column of each block (1-based), -1 for supports
+  std::vector<double> radius;  // L_b, m
+  std::vector<Vec2> c0;        // initial centroids
+  std::vector<Vec2> cen;       // current centroids
+  std::vector<double> angle;   // rotation since the start
+  std::vector<int> motion_of;  // index into c->motion.supports, or -1
+  std::vector<double> weight;  // N
+  int ncols = 0;
+  std::unique_ptr<glp_prob, GlpDeleter> lp;
+  double lp_s = 0;
+  long long lp_solves = 0;
+  long long basis_evaluations = 0;
+
+  Vec2 pos(int b, const Vec2& X) const { return cen[b] + rot(angle[b]) * (X - c0[b]); }
+  Vec2 normal(const Endpoint& e) const { return rot(angle[joints[e.joint].i]) * joints[e.joint].normal; }
+  // Whether endpoint e carries its joint's no-sliding row (see the top of this file).
+  bool sliding_row(size_t e) const { return ends[e].closed && (ends[e].corner == 0 || !ends[e - 1].closed); }
+};
+
+// Prescribed small increment of a support at the current configuration, for a step h.
+struct Increment {
+  Vec2 u{0, 0};  // at point `at`
+  double th = 0;
+  Vec2 at{0, 0};
+  Vec2 at_point(const Vec2& x) const { return u + th * perp(x - at); }
+};
+
+// What an LP solve proved (GLPK's status, in the solver's terms).
+enum class LpStatus { optimal, unbounded, infeasible };
+
+// A way forward from the current configuration: the mechanism U (column values per unit of
+// d) and, when known, its rate of change dU along the way (per m of d). A move h follows
+// U + h/2 dU, which is second-order accurate in h where the first-order update along U alone
+// drifts off the path of ever smaller steps.
+struct Path {
+  const std::vector<double>& U;
+  const std::vector<double>& dU;
+  double at(int j, double h) const { return dU.empty() ? U[j] : U[j] + 0.5 * h * dU[j]; }
+};
+
+// The first open corner that closes within a move of `limit` along the path, and the move
+// that brings its gap to the contact tolerance (as a fixed step closes it), found on the exact finite update (a long
+// step's rotations, and the mechanism's change along it, make the first-order gap rate miss
+// by more than the tolerance). Each open corner's gap is looked at where its rate closes it
+// and at four points along the move, so that one closing and opening again within the move is
+// seen too.
+struct Closing {
+  double at = std::numeric_limits<double>::infinity();
+  size_t corner = 0;
+  double within = 0;  // m of d: the bracket left by the search
+};
+
+// A configuration the run accepted, with what it takes to step from it again.
+struct Accepted {
+  double d = 0;
+  int index = 0;
+  std::vector<Vec2> cen;
+  std::vector<double> angle;
+  std::vector<char> closed;        // the contact state its LP used
+  std::vector<double> U, gap, rate;  // its LP's mechanism, gaps and their rates
+  std::vector<double> dU;            // the mechanism's change along d (empty: not known)
+  double h_lp = 0;                   // the step its LP was solved with
+  std::vector<double> fn;            // its LP's normal force at each corner, N
+  bool same = true;                  // its LP kept the contact state (no corner opens or closes)
+  std::vector<int> row_stat, col_stat;  // its LP's final basis
+  std::vector<double> slack;            // its LP's no-penetration rows' slacks (LP units)
+};
+
+// A planned move from configuration a, where the next opening is expected from it, and the
+// corner expected to open (-1: none).
+struct Move {
+  double h = 0;
+  double to_open = std::numeric_limits<double>::infinity();
+  long corner = -1;
+  void consider(double x, size_t e) {
+    if (x < to_open) to_open = x, corner = static_cast<long>(e);
+  }
+};
+
+// The sliding check of one configuration (PrdSettings::sliding_check). PRD's kinematics forbid
+// sliding, so its forces need not respect any friction limit; the question is how much
+// friction they need.
+//  - demand: |T|/N of each joint resultant of the step's dual forces, as an angle, largest
+//    over the joints. The dual state is one admissible state among many.
+//  - required: the smallest friction angle for which SOME admissible state avoids sliding:
+//    forces only at closed corners (f_n >= 0), one shear per joint in contact, equilibrium
+//    with the loads on the current geometry, and |T_j| <= mu N_j at every joint. For a given
+//    mu that is a linear feasibility problem, so mu is found by bisection between 0 and the
+//    dual state's demand (feasible by construction).
+struct SlidingLp {
+  std::unique_ptr<glp_prob, GlpDeleter> lp{glp_create_prob()};
+  long long solves = 0;
+};
+
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+
+// ---- lp.cpp: the layer over GLPK (the PRD LP's rows, bounds, solves and what they give).
+Model build_model(const Case& c, double tol);
+std::vector<double> generalised_loads(const Model& m);
+void update_lp(Model& m, double h, double scale, double h_open = 0);
+void quiet_adv_basis(Model& m);
+LpStatus solve(Model& m);
+double objective(const Model& m);        // of the last solve, in LP units
+double col_value(const Model& m, int j);  // column j's primal value (1-based)
+double corner_force(const Model& m, size_t e);  // dual of corner e's no-penetration row, N
+double corner_slack(const Model& m, size_t e);  // primal minus bound of that row, LP units
+void read_forces(const Model& m, StepRecord& rec);
+std::vector<double> slacks(const Model& m, double scale);
+nlohmann::ordered_json collapse_mechanism(Model& m, double scale);
+void lp_check_fields(const Model& m, double scale, StepRecord& rec);
+std::vector<double> column_values(const Model& m);
+void save_basis(const Model& m, Accepted& a);
+int evaluate_basis(Model& m, const Accepted& a, double h, double h_open);
+
+// ---- motion.cpp: finite rigid motion, gaps and the contact state, configuration records.
+Vec2 pole_displacement(const Vec2& u, double th);
+Increment support_increment(const Model& m, int b, double h);
+std::vector<JointInfo> joint_infos(const Model& m);
+std::vector<Pose> poses(const Model& m);
+void record_corners(const Model& m, StepRecord& rec);
+double energy(const Model& m);
+void gaps_and_rates(const Model& m, double h, double h_open, std::vector<double>& gap, std::vector<double>& rate);
+std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, const std::vector<double>& rate,
+                               double h_lp, double h, double h_ref);
+void pose_after(const Model& m, const Path& path, size_t b, double h, Vec2& cen, double& angle);
+void advance(Model& m, const Path& path, double h);
+double gap_after(const Model& m, const Path& U, size_t e, double h);
+void set_closed(Model& m, const std::vector<char>& closed);
+StepRecord configuration_record(const Model& m, int index, double d);
+
+// ---- events.cpp: where the next event is, for adaptive runs.
+Closing first_closing(const Model& m, const Path& U, const std::vector<double>& gap,
+                      const std::vector<double>& rate, double limit);
+std::optional<double> basis_crossing(Model& m, const Accepted& a, double span, double tol_ev);
+double first_zero(double f, double b, double k);
+Move predict_opening(const Accepted& a, const std::vector<double>& slope, const std::vector<double>& curve,
+                     const std::vector<char>& ignored);
+Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const Move& guess,
+               const std::vector<double>& slope, const std::vector<char>& ignored, double short_move,
+               const std::function<double(double)>& land);
+nlohmann::ordered_json event_json(const Model& m, const char* kind, double d, double within,
+                                  const std::vector<size_t>& corners);
+
+// ---- sliding.cpp
+void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec);
+
+}  // namespace masonry::prd_detail

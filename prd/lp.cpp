@@ -1,0 +1,328 @@
+// The layer over GLPK, its only user besides the sliding check's own LP: the PRD LP built,
+// rewritten for each configuration, solved, and read.
+//
+// Variables: per free block b, U'_b = (u_x, u_y, theta * L_b) / step, the rigid increment at
+// the current centroid in units of the step (so GLPK's tolerances are relative to the step)
+// with the rotation scaled by the block's radius L_b (so all coefficients are O(1)).
+// Rows: per joint endpoint k, a no-penetration row  n.[u]_k >= -g_k  and a no-sliding row
+// t.[u]_k = 0. For a rigid relative motion t.[u] is the same at both ends of a joint, so the
+// two no-sliding rows of a closed joint are one constraint written twice; kept both, their
+// right-hand sides differ by round-off and the simplex cycles between phases. So a joint has
+// one active no-sliding row, at its first closed endpoint; the others are made free. The row
+// duals are then the endpoint forces in N: f_n >= 0 on the first, f_t on the second.
+#include <glpk.h>
+
+#include <stdexcept>
+
+#include "internal.hpp"
+
+namespace masonry::prd_detail {
+
+Model build_model(const Case& c, double tol) {
+  Model m;
+  m.c = &c;
+  m.tol = tol;
+  m.joints = detect_interfaces(c, tol);
+  const size_t nb = c.blocks.size();
+  m.col.assign(nb, -1);
+  m.radius.assign(nb, 1.0);
+  m.c0.resize(nb);
+  m.weight.assign(nb, 0.0);
+  m.motion_of.assign(nb, -1);
+  for (size_t k = 0; k < c.motion.supports.size(); ++k) m.motion_of[c.motion.supports[k].block] = static_cast<int>(k);
+  for (size_t b = 0; b < nb; ++b) {
+    const Block& bl = c.blocks[b];
+    m.c0[b] = centroid(bl.vertices);
+    double r = 0;
+    for (const Vec2& v : bl.vertices) r = std::max(r, (v - m.c0[b]).norm());
+    m.radius[b] = r;
+    if (!bl.support) {
+      m.col[b] = m.ncols + 1;
+      m.ncols += 3;
+      m.weight[b] = block_mass(bl) * c.gravity;
+    }
+  }
+  m.cen = m.c0;
+  m.angle.assign(nb, 0.0);
+  for (size_t k = 0; k < m.joints.size(); ++k) {
+    m.ends.push_back({static_cast<int>(k), 0, m.joints[k].a});
+    m.ends.push_back({static_cast<int>(k), 1, m.joints[k].b});
+  }
+
+  m.lp.reset(glp_create_prob());
+  glp_prob* lp = m.lp.get();
+  glp_set_obj_dir(lp, GLP_MIN);
+  if (m.ncols > 0) glp_add_cols(lp, m.ncols);
+  for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_FR, 0, 0);
+  if (!m.ends.empty()) glp_add_rows(lp, 2 * static_cast<int>(m.ends.size()));
+  return m;
+}
+
+// Generalised loads on the current configuration: (F_x, F_y, M / L_b) per free block, so the
+// objective is -F.U' in the scaled variables.
+std::vector<double> generalised_loads(const Model& m) {
+  std::vector<double> f(m.ncols + 1, 0.0);
+  const Case& c = *m.c;
+  for (size_t b = 0; b < c.blocks.size(); ++b)
+    if (m.col[b] > 0) f[m.col[b] + 1] -= m.weight[b];
+  for (const Load& l : c.loads) {
+    const int k = m.col[l.block];
+    const Vec2 p = m.pos(l.block, l.point);
+    f[k] += l.force.x();
+    f[k + 1] += l.force.y();
+    f[k + 2] += cross(p - m.cen[l.block], l.force) / m.radius[l.block];
+  }
+  return f;
+}
+
+// Rewrites every row, bound and objective coefficient for the current configuration and a
+// support step h (0 for the analysis as it stands). The problem's structure never changes.
+// Closed corners take back their residual gap over h; open corners must not penetrate over
+// h_open (<= h; 0: h), so that an event-driven run can plan a long step without the bound of
+// a corner that closes part way changing the mechanism: the step is cut short there instead.
+void update_lp(Model& m, double h, double scale, double h_open) {
+  // GLPK aborts the process on a non-finite or zero scale; this is the one place to stop it.
+  if (!(scale > 0) || !std::isfinite(scale) || !(h >= 0) || !std::isfinite(h))
+    throw std::logic_error(std::string("prd: invalid step for the LP (m): ").append(std::to_string(h)));
+  glp_prob* lp = m.lp.get();
+  const std::vector<double> f = generalised_loads(m);
+  for (int j = 1; j <= m.ncols; ++j) glp_set_obj_coef(lp, j, -f[j]);
+  std::vector<Increment> inc(m.c->blocks.size());
+  for (size_t b = 0; b < inc.size(); ++b)
+    if (m.col[b] < 0) inc[b] = support_increment(m, static_cast<int>(b), h);
+
+  int ind[7];
+  double val[7];
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    const Endpoint& ep = m.ends[e];
+    const Interface& jt = m.joints[ep.joint];
+    const Vec2 pi = m.pos(jt.i, ep.X), pj = m.pos(jt.j, ep.X);
+    const Vec2 n = m.normal(ep), t = perp(n);
+    // Both blocks' velocities are taken at the midpoint of the corner's two material points:
+    // they coincide up to the second-order drift of the finite update, and one point makes the
+    // duals an exact equilibrium of forces applied where read_forces reports them.
+    const Vec2 p = 0.5 * (pi + pj);
+    for (int r = 0; r < 2; ++r) {
+      const Vec2 d = r == 0 ? n : t;
+      int cnt = 0;
+      double known = 0;  // d.[u] from the supports' prescribed increments
+      for (int side = 0; side < 2; ++side) {
+        const int b = side == 0 ? jt.i : jt.j;
+        const double sgn = side == 0 ? -1.0 : 1.0;
+        if (m.col[b] > 0) {
+          const int k = m.col[b];
+          ind[++cnt] = k, val[cnt] = sgn * d.x();
+          ind[++cnt] = k + 1, val[cnt] = sgn * d.y();
+          ind[++cnt] = k + 2, val[cnt] = sgn * cross(p - m.cen[b], d) / m.radius[b];
+        } else {
+          known += sgn * d.dot(inc[b].at_point(p));
+        }
+      }
+      const int row = 2 * static_cast<int>(e) + 1 + r;
+      glp_set_mat_row(lp, row, cnt, ind, val);
+      if (r == 0) {
+        double gap = (pj - pi).dot(n);
+        if (!ep.closed && h_open > 0 && h_open < h) gap *= h / h_open;
+        glp_set_row_bnds(lp, row, GLP_LO, (-gap - known) / scale, 0);
+      } else if (m.sliding_row(e)) {
+        // The tangential offset left by earlier finite updates is taken back here, so that
+        // the drift of a closed corner never accumulates over the run.
+        const double slip = (pj - pi).dot(t);
+        glp_set_row_bnds(lp, row, GLP_FX, (-slip - known) / scale, (-slip - known) / scale);
+      } else {
+        glp_set_row_bnds(lp, row, GLP_FR, 0, 0);
+      }
+    }
+  }
+}
+
+// glp_adv_basis prints whatever msg_lev says; the harness's output is its own.
+void quiet_adv_basis(glp_prob* lp) {
+  const int was = glp_term_out(GLP_OFF);
+  glp_adv_basis(lp, 0);
+  glp_term_out(was);
+}
+
+// Runs the primal simplex from the previous step's basis (the warm start that makes a run
+// fast). Degenerate LPs can stall; an iteration limit catches that, and the solve is repeated
+// from a fresh basis with the textbook ratio test, then, as a last resort, in exact rational
+// arithmetic, so a run never hangs and never reports a status GLPK did not prove.
+LpStatus solve(Model& m) {
+  glp_prob* lp = m.lp.get();
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  parm.meth = GLP_PRIMAL;
+  parm.it_lim = 1000 + 50 * (glp_get_num_rows(lp) + glp_get_num_cols(lp));
+  auto conclusive = [&](int rc) {
+    const int st = glp_get_status(lp);
+    return rc == 0 && (st == GLP_OPT || st == GLP_UNBND || st == GLP_NOFEAS);
+  };
+  const auto t0 = Clock::now();
+  int rc = glp_simplex(lp, &parm);
+  if (!conclusive(rc)) {
+    quiet_adv_basis(lp);
+    parm.r_test = GLP_RT_STD;
+    rc = glp_simplex(lp, &parm);
+  }
+  if (!conclusive(rc)) {
+    quiet_adv_basis(lp);
+    rc = glp_exact(lp, &parm);
+  }
+  m.lp_s += seconds_since(t0);
+  ++m.lp_solves;
+  if (!conclusive(rc)) throw std::runtime_error("GLPK could not solve the step's LP (code " + std::to_string(rc) + ")");
+  switch (glp_get_status(lp)) {
+    case GLP_OPT: return LpStatus::optimal;
+    case GLP_UNBND: return LpStatus::unbounded;
+    default: return LpStatus::infeasible;  // GLP_NOFEAS: conclusive() admits nothing else
+  }
+}
+
+void quiet_adv_basis(Model& m) { quiet_adv_basis(m.lp.get()); }
+double objective(const Model& m) { return glp_get_obj_val(m.lp.get()); }
+double col_value(const Model& m, int j) { return glp_get_col_prim(m.lp.get(), j); }
+double corner_force(const Model& m, size_t e) { return glp_get_row_dual(m.lp.get(), 2 * static_cast<int>(e) + 1); }
+double corner_slack(const Model& m, size_t e) {
+  const int row = 2 * static_cast<int>(e) + 1;
+  return glp_get_row_prim(m.lp.get(), row) - glp_get_row_lb(m.lp.get(), row);
+}
+
+
+// Forces from the row duals: joint resultants and support reactions, on the current geometry.
+void read_forces(const Model& m, StepRecord& rec) {
+  glp_prob* lp = m.lp.get();
+  const Case& c = *m.c;
+  std::vector<Reaction> reac;
+  std::vector<int> reac_of(c.blocks.size(), -1);
+  for (size_t b = 0; b < c.blocks.size(); ++b)
+    if (c.blocks[b].support) {
+      reac_of[b] = static_cast<int>(reac.size());
+      reac.push_back({c.blocks[b].id, Vec2(0, 0), 0.0});
+    }
+  for (size_t k = 0; k < m.joints.size(); ++k) {
+    const Interface& jt = m.joints[k];
+    double N = 0, T = 0;
+    Vec2 moment_point(0, 0);
+    Vec2 n(0, 0);
+    for (int corner = 0; corner < 2; ++corner) {
+      const size_t e = 2 * k + corner;
+      const Endpoint& ep = m.ends[e];
+      const double fn = glp_get_row_dual(lp, 2 * static_cast<int>(e) + 1);
+      const double ft = m.sliding_row(e) ? glp_get_row_dual(lp, 2 * static_cast<int>(e) + 2) : 0.0;
+      n = m.normal(ep);
+      const Vec2 p = 0.5 * (m.pos(jt.i, ep.X) + m.pos(jt.j, ep.X));
+      N += fn;
+      T += ft;
+      moment_point += fn * p;
+      const Vec2 fk = fn * n + ft * perp(n);  // on block j
+      // Reactions: the force the structure receives from the support, and its moment.
+      for (int side = 0; side < 2; ++side) {
+        const int b = side == 0 ? jt.i : jt.j;
+        if (reac_of[b] < 0) continue;
+        const Vec2 on_structure = side == 0 ? fk : Vec2(-fk);
+        Reaction& r = reac[reac_of[b]];
+        r.force += on_structure;
+        const Vec2 about = m.motion_of[b] >= 0 ? m.pos(b, c.motion.supports[m.motion_of[b]].about) : m.cen[b];
+        r.moment += cross(p - about, on_structure);
+      }
+    }
+    if (N > 0 || T != 0) {
+      JointForce jf;
+      jf.joint = static_cast<int>(k);
+      jf.normal = N;
+      jf.shear = T;
+      jf.n = n;
+      jf.point = N > 0 ? Vec2(moment_point / N) : Vec2(0.5 * (m.pos(jt.i, jt.a) + m.pos(jt.i, jt.b)));
+      rec.forces.push_back(jf);
+    }
+  }
+  rec.reactions = std::move(reac);
+}
+
+// Slack of each no-penetration row in m: the endpoint's gap at the end of the increment,
+// to first order.
+std::vector<double> slacks(const Model& m, double scale) {
+  std::vector<double> s(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    const int row = 2 * static_cast<int>(e) + 1;
+    s[e] = (glp_get_row_prim(m.lp.get(), row) - glp_get_row_lb(m.lp.get(), row)) * scale;
+  }
+  return s;
+}
+
+
+// The collapse mechanism: the same LP with every increment boxed to one unit, so that it has
+// an optimum whose open corners show the mechanism. The columns are freed again afterwards.
+nlohmann::ordered_json collapse_mechanism(Model& m, double scale) {
+  glp_prob* lp = m.lp.get();
+  for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_DB, -1, 1);
+  nlohmann::ordered_json out;
+  out["open_corners"] = nlohmann::ordered_json::array();
+  out["moving_blocks"] = nlohmann::ordered_json::array();
+  if (solve(m) == LpStatus::optimal) {
+    const std::vector<double> s = slacks(m, scale);
+    for (size_t e = 0; e < m.ends.size(); ++e)
+      if (s[e] > 1e-6 * scale)
+        out["open_corners"].push_back({{"joint", m.ends[e].joint}, {"corner", m.ends[e].corner == 0 ? "A" : "B"}});
+    for (size_t b = 0; b < m.col.size(); ++b) {
+      if (m.col[b] < 0) continue;
+      double v = 0;
+      for (int k = 0; k < 3; ++k) v = std::max(v, std::abs(glp_get_col_prim(lp, m.col[b] + k)));
+      if (v > 1e-6) out["moving_blocks"].push_back(m.c->blocks[b].id);
+    }
+  }
+  for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_FR, 0, 0);
+  return out;
+}
+
+
+void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
+  // Strong duality: the primal optimum equals sum(dual * bound) over the active rows.
+  glp_prob* lp = m.lp.get();
+  double dual = 0;
+  for (int r = 1; r <= glp_get_num_rows(lp); ++r) {
+    const int type = glp_get_row_type(lp, r);
+    if (type == GLP_FR) continue;
+    dual += glp_get_row_dual(lp, r) * glp_get_row_lb(lp, r);
+  }
+  rec.extra["lp_primal"] = glp_get_obj_val(lp) * scale;
+  rec.extra["lp_dual"] = dual * scale;
+}
+
+
+std::vector<double> column_values(const Model& m) {
+  std::vector<double> U(m.ncols + 1, 0.0);
+  for (int j = 1; j <= m.ncols; ++j) U[j] = glp_get_col_prim(m.lp.get(), j);
+  return U;
+}
+
+
+void save_basis(const Model& m, Accepted& a) {
+  glp_prob* lp = m.lp.get();
+  a.row_stat.resize(glp_get_num_rows(lp) + 1);
+  a.col_stat.resize(m.ncols + 1);
+  for (size_t i = 1; i < a.row_stat.size(); ++i) a.row_stat[i] = glp_get_row_stat(lp, static_cast<int>(i));
+  for (int j = 1; j <= m.ncols; ++j) a.col_stat[j] = glp_get_col_stat(lp, j);
+  a.slack.resize(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    const int row = 2 * static_cast<int>(e) + 1;
+    a.slack[e] = glp_get_row_prim(lp, row) - glp_get_row_lb(lp, row);
+  }
+}
+
+// The LP of the current configuration and contact state for a step h (open corners held over
+// h_open) with a's basis, evaluated without a simplex iteration (glp_warm_up's code).
+int evaluate_basis(Model& m, const Accepted& a, double h, double h_open) {
+  glp_prob* lp = m.lp.get();
+  update_lp(m, h, h, h_open);
+  for (size_t i = 1; i < a.row_stat.size(); ++i) glp_set_row_stat(lp, static_cast<int>(i), a.row_stat[i]);
+  for (int j = 1; j <= m.ncols; ++j) glp_set_col_stat(lp, j, a.col_stat[j]);
+  const auto t0 = Clock::now();
+  const int rc = glp_warm_up(lp);
+  m.lp_s += seconds_since(t0);
+  ++m.basis_evaluations;
+  return rc;
+}
+
+}  // namespace masonry::prd_detail

@@ -1,0 +1,159 @@
+// Finite rigid motion along a mechanism, the gaps it gives, the contact state and the
+// configuration records.
+#include "internal.hpp"
+
+namespace masonry::prd_detail {
+
+// Rigid increment (u at point c, rotation th) applied as a finite rotation about its pole:
+// returns the displacement of c. (R(th) - I)/th is evaluated without cancellation, and tends
+// to the plain translation as th -> 0.
+Vec2 pole_displacement(const Vec2& u, double th) {
+  double s, q;  // s = sin(th)/th, q = (cos(th) - 1)/th
+  if (std::abs(th) < 1e-6) {
+    s = 1 - th * th / 6;
+    q = -th / 2 + th * th * th / 24;
+  } else {
+    const double h = std::sin(th / 2);
+    s = std::sin(th) / th;
+    q = -2 * h * h / th;
+  }
+  // (R - I)/th = [[q, -s], [s, q]]; displacement = -((R - I)/th) perp(u).
+  const Vec2 w = perp(u);
+  return -Vec2(q * w.x() - s * w.y(), s * w.x() + q * w.y());
+}
+
+
+Increment support_increment(const Model& m, int b, double h) {
+  Increment inc;
+  inc.at = m.cen[b];
+  if (m.motion_of[b] < 0 || h == 0) return inc;
+  const SupportMotion& s = m.c->motion.supports[m.motion_of[b]];
+  inc.at = m.pos(b, s.about);
+  inc.u = h * s.translation;
+  inc.th = h * s.rotation;
+  return inc;
+}
+
+
+std::vector<JointInfo> joint_infos(const Model& m) {
+  std::vector<JointInfo> out;
+  for (const Interface& f : m.joints) out.push_back({f.i, f.j, f.a, f.b});
+  return out;
+}
+
+std::vector<Pose> poses(const Model& m) {
+  std::vector<Pose> out;
+  for (size_t b = 0; b < m.cen.size(); ++b) out.push_back({m.cen[b].x(), m.cen[b].y(), m.angle[b]});
+  return out;
+}
+
+
+void record_corners(const Model& m, StepRecord& rec) {
+  std::vector<char> cracked(m.joints.size(), 0);
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    if (m.ends[e].closed) continue;
+    const Endpoint& ep = m.ends[e];
+    const Interface& jt = m.joints[ep.joint];
+    const double gap = (m.pos(jt.j, ep.X) - m.pos(jt.i, ep.X)).dot(m.normal(ep));
+    rec.open_corners.push_back({ep.joint, ep.corner, gap});
+    cracked[ep.joint] = 1;
+  }
+  for (size_t k = 0; k < cracked.size(); ++k)
+    if (cracked[k]) rec.cracked.push_back(static_cast<int>(k));
+}
+
+double energy(const Model& m) {
+  double e = 0;
+  for (size_t b = 0; b < m.cen.size(); ++b) e += m.weight[b] * (m.cen[b].y() - m.c0[b].y());
+  for (const Load& l : m.c->loads) e -= l.force.dot(m.pos(l.block, l.point) - l.point);
+  return e;
+}
+
+
+// Per endpoint, from the LP just solved with step h (open corners held over h_open, see
+// update_lp): the gap on the current configuration and its rate of change along the mechanism
+// (m per m of d).
+void gaps_and_rates(const Model& m, double h, double h_open, std::vector<double>& gap, std::vector<double>& rate) {
+  const std::vector<double> slack = slacks(m, h);
+  gap.resize(m.ends.size());
+  rate.resize(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    const Endpoint& ep = m.ends[e];
+    const Interface& jt = m.joints[ep.joint];
+    gap[e] = (m.pos(jt.j, ep.X) - m.pos(jt.i, ep.X)).dot(m.normal(ep));
+    const double held = !ep.closed && h_open < h ? gap[e] * h / h_open : gap[e];  // the row's gap
+    rate[e] = (slack[e] - held) / h;
+  }
+}
+
+// Contact state after a step h along the mechanism of the LP solved with step h_lp. An open
+// corner closes when its gap at the end of the step is below the tolerance. A closed corner
+// opens when it would open by more than the tolerance over the reference step h_ref: its gap
+// at the end of the LP's step (the residual gap of earlier finite updates is taken back in
+// that step) scaled to h_ref, so the state does not depend on the step being taken. With
+// h = h_lp = h_ref both rules are "gap at the end of the step below the tolerance".
+std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, const std::vector<double>& rate,
+                               double h_lp, double h, double h_ref) {
+  std::vector<char> out(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e)
+    out[e] = m.ends[e].closed ? (gap[e] + rate[e] * h_lp) * (h_ref / h_lp) <= m.tol : gap[e] + rate[e] * h <= m.tol;
+  return out;
+}
+
+
+// Where block b is after a finite update by h along the path: a free block rotates about its
+// own pole, a support moves as prescribed.
+void pose_after(const Model& m, const Path& path, size_t b, double h, Vec2& cen, double& angle) {
+  cen = m.cen[b];
+  angle = m.angle[b];
+  if (m.col[b] > 0) {
+    const Vec2 u(path.at(m.col[b], h) * h, path.at(m.col[b] + 1, h) * h);
+    const double th = path.at(m.col[b] + 2, h) * h / m.radius[b];
+    cen += pole_displacement(u, th);
+    angle += th;
+  } else if (m.motion_of[b] >= 0) {
+    const Increment inc = support_increment(m, static_cast<int>(b), h);
+    cen = inc.at + rot(inc.th) * (cen - inc.at) + inc.u;
+    angle += inc.th;
+  }
+}
+
+void advance(Model& m, const Path& path, double h) {
+  for (size_t b = 0; b < m.cen.size(); ++b) {
+    Vec2 cen;
+    double angle;
+    pose_after(m, path, b, h, cen, angle);
+    m.cen[b] = cen;
+    m.angle[b] = angle;
+  }
+}
+
+// The gap of corner e after a finite update by h along the path, exactly (not to first order).
+double gap_after(const Model& m, const Path& U, size_t e, double h) {
+  const Endpoint& ep = m.ends[e];
+  const Interface& jt = m.joints[ep.joint];
+  Vec2 ci, cj;
+  double ai, aj;
+  pose_after(m, U, jt.i, h, ci, ai);
+  pose_after(m, U, jt.j, h, cj, aj);
+  const Vec2 pi = ci + rot(ai) * (ep.X - m.c0[jt.i]), pj = cj + rot(aj) * (ep.X - m.c0[jt.j]);
+  return (pj - pi).dot(rot(ai) * jt.normal);
+}
+
+
+void set_closed(Model& m, const std::vector<char>& closed) {
+  for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = closed[e];
+}
+
+
+StepRecord configuration_record(const Model& m, int index, double d) {
+  StepRecord rec;
+  rec.index = index;
+  rec.d = d;
+  rec.poses = poses(m);
+  rec.energy = energy(m);
+  record_corners(m, rec);
+  return rec;
+}
+
+}  // namespace masonry::prd_detail
