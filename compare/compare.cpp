@@ -511,7 +511,8 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
       r.joints.push_back(ji);
     }
     const int nj = int(r.joints.size());
-    static const std::set<std::string> known{"step", "d", "energy", "open_corners", "cracked", "reactions", "poses", "forces"};
+    static const std::set<std::string> known{"step",  "d",     "energy", "open_corners", "cracked",
+                                             "reactions", "poses", "forces", "sliding"};
     for (const ojson& js : j.at("steps")) {
       StepRecord s;
       s.index = js.at("step").get<int>();
@@ -548,6 +549,11 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
         jf.point = vec(f.at("point"), "forces[].point");
         jf.n = vec(f.at("n"), "forces[].n");
         s.forces.push_back(jf);
+      }
+      if (js.contains("sliding")) {
+        const ojson& x = js["sliding"];
+        s.sliding = SlidingCheck{dbl(x.at("demand_angle"), "steps[].sliding.demand_angle"), x.at("demand_joint").get<int>(),
+                                 dbl(x.at("required_angle"), "steps[].sliding.required_angle"), x.at("required_joint").get<int>()};
       }
       for (auto it = js.begin(); it != js.end(); ++it)
         if (!known.count(it.key())) s.extra[it.key()] = it.value();

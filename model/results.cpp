@@ -75,10 +75,30 @@ ojson to_json(const RunResult& r, const Case& c) {
       fo.push_back({{"joint", f.joint}, {"normal", num(f.normal)}, {"shear", num(f.shear)}, {"point", vec(f.point)}, {"n", vec(f.n)}});
     js["forces"] = fo;
     for (auto it = s.extra.begin(); it != s.extra.end(); ++it) js[it.key()] = it.value();
+    if (s.sliding)
+      js["sliding"] = {{"demand_angle", num(s.sliding->demand_angle)},
+                       {"demand_joint", s.sliding->demand_joint},
+                       {"required_angle", num(s.sliding->required_angle)},
+                       {"required_joint", s.sliding->required_joint}};
     steps.push_back(js);
   }
   j["steps"] = steps;
   for (auto it = r.extra.begin(); it != r.extra.end(); ++it) j[it.key()] = it.value();
+  if (r.sliding) {
+    const SlidingSummary& x = *r.sliding;
+    ojson o = ojson::object();
+    if (x.any) {
+      o["required_friction_angle"] = num(x.required_friction_angle);
+      o["d"] = num(x.d);
+      o["step"] = x.step;
+      o["joint"] = x.joint;
+      o["max_demand_angle"] = num(x.max_demand_angle);
+      o["demand_d"] = num(x.demand_d);
+      o["demand_joint"] = x.demand_joint;
+    }
+    o["lp_solves"] = x.lp_solves;
+    j["sliding"] = o;
+  }
   return j;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,29 @@ struct Pose {
   double x = 0, y = 0, angle = 0;  // centroid (m) and rotation since the start (rad)
 };
 
+// PRD's sliding check of one configuration (PrdSettings::sliding_check), degrees. PRD's
+// kinematics forbid sliding, so its forces need not respect a friction limit; this says how much
+// friction they need.
+struct SlidingCheck {
+  double demand_angle = 0.0;    // atan(|T|/N) of the step's dual joint forces, largest over the joints
+  int demand_joint = -1;
+  double required_angle = 0.0;  // least friction angle for which some admissible force state avoids sliding
+  int required_joint = -1;
+};
+
+// The sliding check over a whole run (prd's sliding_summary): the most demanding steps.
+struct SlidingSummary {
+  bool any = false;                     // some step carries the check (else only lp_solves)
+  double required_friction_angle = 0;   // deg: largest required_angle over the steps
+  double d = 0;                         // m, where
+  int step = 0;
+  std::string joint;                    // "i/j" block ids
+  double max_demand_angle = 0;          // deg: largest demand_angle over the steps
+  double demand_d = 0;                  // m
+  std::string demand_joint;
+  long long lp_solves = 0;              // the check's feasibility LPs
+};
+
 struct StepRecord {
   int index = 0;     // 0 = initial configuration
   double d = 0.0;    // path parameter after this step, m
@@ -43,6 +67,7 @@ struct StepRecord {
   std::vector<Reaction> reactions;   // one per support block
   std::vector<Pose> poses;           // one per block (supports included), in case order
   std::vector<JointForce> forces;    // one per joint carrying force
+  std::optional<SlidingCheck> sliding;  // PRD with the sliding check
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // method-specific fields
 };
 
@@ -75,6 +100,7 @@ struct RunResult {
   std::vector<StepRecord> steps;
   Timing timing;
   nlohmann::ordered_json settings = nlohmann::ordered_json::object();
+  std::optional<SlidingSummary> sliding;  // PRD with the sliding check
   nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // method-specific, top level
 };
 

@@ -112,11 +112,10 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                      std::cerr << "prd: " << printable(c.name) << ": " << r.stopped << (r.message.empty() ? "" : " (" + r.message + ")")
                                << ", capacity " << r.capacity << " m after " << r.stable_steps << " steps, "
                                << r.timing.total_s << " s (" << r.timing.lp_solves << " LPs); results in " << *dir << "\n";
-                     if (s.sliding_check && r.extra.contains("sliding") && r.extra["sliding"].contains("required_friction_angle")) {
-                       const auto& x = r.extra["sliding"];
+                     if (r.sliding && r.sliding->any) {
                        std::cerr << "prd: sliding check: some admissible force state avoids sliding at every step for friction angles above "
-                                 << x["required_friction_angle"].get<double>() << " deg (the most demanding: d = " << x["d"].get<double>()
-                                 << " m, joint " << x["joint"].get<std::string>() << ")\n";
+                                 << r.sliding->required_friction_angle << " deg (the most demanding: d = " << r.sliding->d
+                                 << " m, joint " << r.sliding->joint << ")\n";
                      }
                      if (*friction >= 0) {
                        // Two answers: where the dual's own forces need more friction than the

@@ -28,8 +28,8 @@ struct PrdSettings {
   double event_tolerance = 0.0;     // m; <= 0: 1e-4 of the scene size
   double max_step = 0.0;            // m; <= 0: the smaller of 16 * step and
                                     // 0.4 sqrt(event_tolerance * scene size)
-  // The sliding check on every recorded step (extra["sliding"] of each step; summary in the
-  // run's extra["sliding"], see sliding_summary). Angles in degrees, as friction angles are.
+  // The sliding check on every recorded step (StepRecord::sliding; the run's summary in
+  // RunResult::sliding, see sliding_summary). Angles in degrees, as friction angles are.
   bool sliding_check = false;
   static PrdSettings from_case(const Case& c);
 };
@@ -52,14 +52,14 @@ PrdCheck prd_check(const Case& c, double contact_tolerance);
 RunResult prd_run(const Case& c, const PrdSettings& s,
                   const std::function<void(const RunResult&)>& on_step = {});
 
-// The sliding check's answer for a whole run, from its records' extra["sliding"]:
+// The sliding check's answer for a whole run, from its records' StepRecord::sliding:
 //   required_friction_angle (deg): the largest over the steps of the smallest friction angle
 //     for which the step admits a force state without sliding: below it PRD's no-sliding
 //     assumption fails somewhere before collapse; with d (m), step and joint ("i/j") where
 //     that happens;
 //   max_demand_angle (deg), demand_d, demand_joint: the same for the dual force state alone.
-// Empty when no step carries the check.
-nlohmann::ordered_json sliding_summary(const Case& c, const RunResult& r);
+// `any` is false when no step carries the check.
+SlidingSummary sliding_summary(const Case& c, const RunResult& r);
 
 // The first step where the friction demand (required = false: of the dual forces; true: of
 // the best admissible state) exceeds angle_deg.

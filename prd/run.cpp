@@ -343,8 +343,8 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
     r.message = e.what();
   }
   if (s.sliding_check) {
-    r.extra["sliding"] = sliding_summary(c, r);
-    r.extra["sliding"]["lp_solves"] = sliding.solves;
+    r.sliding = sliding_summary(c, r);
+    r.sliding->lp_solves = sliding.solves;
   }
   emit();
   return r;

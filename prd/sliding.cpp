@@ -130,10 +130,7 @@ void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec) {
       }
     }
   }
-  rec.extra["sliding"] = {{"demand_angle", demand * kDeg},
-                          {"demand_joint", demand_joint},
-                          {"required_angle", std::atan(hi) * kDeg},
-                          {"required_joint", required_joint}};
+  rec.sliding = SlidingCheck{demand * kDeg, demand_joint, std::atan(hi) * kDeg, required_joint};
 }
 
 
@@ -141,8 +138,8 @@ void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec) {
 
 namespace masonry {
 
-nlohmann::ordered_json sliding_summary(const Case& c, const RunResult& r) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+SlidingSummary sliding_summary(const Case& c, const RunResult& r) {
+  SlidingSummary out;
   auto joint_name = [&](int k) {
     if (k < 0 || k >= static_cast<int>(r.joints.size())) return std::string();
     return c.blocks[r.joints[k].i].id + "/" + c.blocks[r.joints[k].j].id;
@@ -150,36 +147,32 @@ nlohmann::ordered_json sliding_summary(const Case& c, const RunResult& r) {
   const StepRecord* req = nullptr;
   const StepRecord* dem = nullptr;
   for (const StepRecord& s : r.steps) {
-    if (!s.extra.contains("sliding")) continue;
-    const auto& x = s.extra["sliding"];
-    if (!req || x["required_angle"].get<double>() > req->extra["sliding"]["required_angle"].get<double>()) req = &s;
-    if (!dem || x["demand_angle"].get<double>() > dem->extra["sliding"]["demand_angle"].get<double>()) dem = &s;
+    if (!s.sliding) continue;
+    if (!req || s.sliding->required_angle > req->sliding->required_angle) req = &s;
+    if (!dem || s.sliding->demand_angle > dem->sliding->demand_angle) dem = &s;
   }
   if (!req) return out;
-  const auto& xr = req->extra["sliding"];
-  const auto& xd = dem->extra["sliding"];
-  out["required_friction_angle"] = xr["required_angle"];
-  out["d"] = req->d;
-  out["step"] = req->index;
-  out["joint"] = joint_name(xr["required_joint"].get<int>());
-  out["max_demand_angle"] = xd["demand_angle"];
-  out["demand_d"] = dem->d;
-  out["demand_joint"] = joint_name(xd["demand_joint"].get<int>());
+  out.any = true;
+  out.required_friction_angle = req->sliding->required_angle;
+  out.d = req->d;
+  out.step = req->index;
+  out.joint = joint_name(req->sliding->required_joint);
+  out.max_demand_angle = dem->sliding->demand_angle;
+  out.demand_d = dem->d;
+  out.demand_joint = joint_name(dem->sliding->demand_joint);
   return out;
 }
 
 std::optional<SlidingExceedance> first_sliding(const Case& c, const RunResult& r, double angle_deg, bool required) {
-  const char* key = required ? "required_angle" : "demand_angle";
-  const char* joint_key = required ? "required_joint" : "demand_joint";
   for (const StepRecord& s : r.steps) {
-    if (!s.extra.contains("sliding")) continue;
-    const auto& x = s.extra["sliding"];
-    if (x[key].get<double>() <= angle_deg) continue;
+    if (!s.sliding) continue;
+    const double angle = required ? s.sliding->required_angle : s.sliding->demand_angle;
+    if (angle <= angle_deg) continue;
     SlidingExceedance e;
     e.step = s.index;
     e.d = s.d;
-    e.angle = x[key].get<double>();
-    e.joint = x[joint_key].get<int>();
+    e.angle = angle;
+    e.joint = required ? s.sliding->required_joint : s.sliding->demand_joint;
     if (e.joint >= 0) e.blocks = c.blocks[r.joints[e.joint].i].id + "/" + c.blocks[r.joints[e.joint].j].id;
     return e;
   }

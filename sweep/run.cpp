@@ -38,12 +38,8 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run) {
       if (row.message.empty()) row.message = "the run ended as '" + r.stopped + "'";
     }
     // The PRD's sliding check (prd/): the friction angle below which its run would slide.
-    const auto sliding = r.extra.find("sliding");
-    if (sliding != r.extra.end() && sliding->is_object()) {
-      const auto angle = sliding->find("required_friction_angle");
-      if (angle != sliding->end() && angle->is_number() && std::isfinite(angle->get<double>()))
-        row.required_friction_angle = angle->get<double>();
-    }
+    if (r.sliding && r.sliding->any && std::isfinite(r.sliding->required_friction_angle))
+      row.required_friction_angle = r.sliding->required_friction_angle;
   } catch (const std::exception& e) {
     row.stopped = "error";
     row.message = e.what();

@@ -86,9 +86,8 @@ Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& c
         return fail("no collapse up to d = " + std::to_string(r.capacity) + " m (stopped: " + r.stopped + ")");
       return {true, r.capacity, ""};
     case Quantity::least_friction_angle: {
-      const auto& x = r.extra.value("sliding", nlohmann::ordered_json::object());
-      if (!x.contains("required_friction_angle")) return fail("the sliding check reported nothing");
-      return {true, x["required_friction_angle"].get<double>(), "at joint " + x.value("joint", std::string("?"))};
+      if (!r.sliding || !r.sliding->any) return fail("the sliding check reported nothing");
+      return {true, r.sliding->required_friction_angle, "at joint " + r.sliding->joint};
     }
     case Quantity::reaction: {
       const StepRecord* s = record_at(r, b.at_d);
@@ -141,9 +140,10 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
     row.benchmark = &b;
     row.method = mr.method;
     row.unit = quantity_unit(b.quantity);
-    if (b.quantity == Quantity::threshold && b.search->parameter.find("friction_angle") != std::string::npos) row.unit = "deg";
-    if (b.quantity == Quantity::threshold && b.search->parameter == "thickness") row.unit = "m";
-    if (b.quantity == Quantity::reaction && b.component == "moment") row.unit = "N m";
+    // std::string(...), not a literal: GCC 12 warns falsely on these assignments (PR105651).
+    if (b.quantity == Quantity::threshold && b.search->parameter.find("friction_angle") != std::string::npos) row.unit = std::string("deg");
+    if (b.quantity == Quantity::threshold && b.search->parameter == "thickness") row.unit = std::string("m");
+    if (b.quantity == Quantity::reaction && b.component == "moment") row.unit = std::string("N m");
     const Expected& x = mr.expected ? *mr.expected : b.expected;
     row.expected_from = mr.expected ? mr.source : b.source;
     bool have_expected = true;

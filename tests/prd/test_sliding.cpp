@@ -51,10 +51,10 @@ TEST(PrdSliding, BlockOnAnInclinedPlaneNeedsTheInclination) {
     const Case c = inclined(alpha_deg / kDeg, 0.6, 0.4, false, false);
     const RunResult r = prd_run(c, PrdSettings::from_case(c));
     ASSERT_EQ(r.steps.size(), 1u) << r.message;
-    const auto& x = r.steps[0].extra["sliding"];
-    EXPECT_NEAR(x["demand_angle"].get<double>(), alpha_deg, 1e-6) << alpha_deg;
-    EXPECT_NEAR(x["required_angle"].get<double>(), alpha_deg, 0.02) << alpha_deg;
-    EXPECT_NEAR(r.extra["sliding"]["required_friction_angle"].get<double>(), alpha_deg, 0.02);
+    ASSERT_TRUE(r.steps[0].sliding && r.sliding && r.sliding->any);
+    EXPECT_NEAR(r.steps[0].sliding->demand_angle, alpha_deg, 1e-6) << alpha_deg;
+    EXPECT_NEAR(r.steps[0].sliding->required_angle, alpha_deg, 0.02) << alpha_deg;
+    EXPECT_NEAR(r.sliding->required_friction_angle, alpha_deg, 0.02);
   }
 }
 
@@ -65,9 +65,9 @@ TEST(PrdSliding, IndeterminateShearNeedsOnlyTheInclination) {
   const Case c = inclined(alpha_deg / kDeg, 0.6, 0.4, true, false);
   const RunResult r = prd_run(c, PrdSettings::from_case(c));
   ASSERT_EQ(r.steps.size(), 1u) << r.message;
-  const auto& x = r.steps[0].extra["sliding"];
-  EXPECT_GE(x["demand_angle"].get<double>(), alpha_deg - 1e-6);
-  EXPECT_NEAR(x["required_angle"].get<double>(), alpha_deg, 0.02);
+  ASSERT_TRUE(r.steps[0].sliding);
+  EXPECT_GE(r.steps[0].sliding->demand_angle, alpha_deg - 1e-6);
+  EXPECT_NEAR(r.steps[0].sliding->required_angle, alpha_deg, 0.02);
 }
 
 // On a tilting plane the need grows with the tilt until the block topples at atan(b/h): the
@@ -79,9 +79,12 @@ TEST(PrdSliding, TiltingPlaneNeedsTheTiltUntilToppling) {
   const RunResult r = prd_run(c, PrdSettings::from_case(c));
   ASSERT_EQ(r.stopped, "collapse") << r.message;
   const double step_deg = 0.5, topple_deg = std::atan(b / h) * kDeg;
-  for (const StepRecord& s : r.steps)
-    EXPECT_NEAR(s.extra["sliding"]["required_angle"].get<double>(), s.d * kDeg, 0.02) << s.d;
-  const double req = r.extra["sliding"]["required_friction_angle"].get<double>();
+  for (const StepRecord& s : r.steps) {
+    ASSERT_TRUE(s.sliding) << s.d;
+    EXPECT_NEAR(s.sliding->required_angle, s.d * kDeg, 0.02) << s.d;
+  }
+  ASSERT_TRUE(r.sliding && r.sliding->any);
+  const double req = r.sliding->required_friction_angle;
   EXPECT_LE(req, topple_deg + 0.02);
   EXPECT_GT(req, topple_deg - step_deg - 0.02);
   const auto e = first_sliding(c, r, 15.0, true);
@@ -100,8 +103,8 @@ TEST(PrdSliding, RequiredNeverExceedsTheDualsDemand) {
   const RunResult r = prd_run(c, s);
   ASSERT_EQ(r.stopped, "collapse");
   for (const StepRecord& st : r.steps) {
-    ASSERT_TRUE(st.extra.contains("sliding")) << st.d;
-    EXPECT_LE(st.extra["sliding"]["required_angle"].get<double>(), st.extra["sliding"]["demand_angle"].get<double>() + 1e-9);
+    ASSERT_TRUE(st.sliding) << st.d;
+    EXPECT_LE(st.sliding->required_angle, st.sliding->demand_angle + 1e-9);
   }
 }
 
