@@ -161,28 +161,41 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
                     " s): no capacity";
     } else {
       settled_gaps = m.corner_gaps(joints);
-      // Stage 2: increments, each a move and a hold, from the last equilibrium.
       DemSnapshot last_eq = m.save();
       double d_eq = 0;
       int index = 1;
-      Attempt failed;
-      double d_fail = 0;
-      bool failure = false;
-      for (int k = 1; k <= s.max_steps; ++k) {
-        const double d1 = k * s.step;
-        const Attempt a = attempt(d_eq, d1);
-        if (a.hold.end != HoldEnd::equilibrium) {
-          failed = a;
-          d_fail = d1;
-          failure = true;
+      // Increments follow the grid k x step until a failure that was not confirmed moves the
+      // last equilibrium off it; from there they are step long, up to max_steps x step.
+      int k = 1;
+      bool on_grid = true;
+      const double d_end = s.max_steps * s.step;
+      nlohmann::ordered_json unconfirmed = nlohmann::ordered_json::array();
+      while (true) {
+        // Stage 2: increments, each a move and a hold, from the last equilibrium.
+        Attempt failed;
+        double d_fail = 0;
+        bool failure = false;
+        while (on_grid ? k <= s.max_steps : d_eq + s.step <= d_end * (1 + 1e-12)) {
+          const double d1 = on_grid ? k * s.step : d_eq + s.step;
+          ++k;
+          const Attempt a = attempt(d_eq, d1);
+          if (a.hold.end != HoldEnd::equilibrium) {
+            failed = a;
+            d_fail = d1;
+            failure = true;
+            break;
+          }
+          emit(index++, a.hold, a.cycles, a.move_cycles, false, a.lag());
+          r.capacity = d_eq = d1;
+          ++r.stable_steps;
+          last_eq = m.save();
+        }
+        if (!failure) {
+          // Only now: the results handed out on the way say "running", so a run stopped from
+          // outside does not look finished.
+          r.stopped = "max_steps";
           break;
         }
-        emit(index++, a.hold, a.cycles, a.move_cycles, false, a.lag());
-        r.capacity = d_eq = d1;
-        ++r.stable_steps;
-        last_eq = m.save();
-      }
-      if (failure) {
         // Stage 3: the collapse bracket. Back to the last equilibrium, halve the failed
         // increment until the bracket is narrower than bracket_fraction x step. A trial that
         // does not settle (collapse or undecided) moves the upper end; one that settles is a
@@ -190,6 +203,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
         nlohmann::ordered_json trials = nlohmann::ordered_json::array();
         trials.push_back({{"d", d_fail}, {"end", dem::hold_end_name(failed.hold.end)}, {"cycles", failed.cycles}});
         DemSnapshot failed_state = m.save();
+        double failed_from = d_eq;  // the equilibrium the failed attempt at d_fail started from
         while (bracket > 0 && d_fail - d_eq > bracket) {
           m.restore(last_eq);
           speed = 0;
@@ -204,8 +218,32 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
           } else {
             failed = a;
             d_fail = mid;
+            failed_from = d_eq;
             failed_state = m.save();
           }
+        }
+        // Stage 4: confirm the collapse. The failure at d_fail was reached by a move from
+        // failed_from; if the bracket's lower end has moved up since, the collapse must also
+        // follow from the last equilibrium by a move shorter than the bracket. Where it does
+        // not, the longer move's own dynamics tipped the structure over (every trial below
+        // d_fail settling is the sign: the failure sits on the increment grid), so d_fail is
+        // an equilibrium, not the capacity, and the increments go on from there.
+        if (bracket > 0 && failed_from < d_eq) {
+          m.restore(last_eq);
+          speed = 0;
+          const Attempt a = attempt(d_eq, d_fail);
+          trials.push_back({{"d", d_fail}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}, {"confirm", true}});
+          if (a.hold.end == HoldEnd::equilibrium) {
+            unconfirmed.push_back({{"d", d_fail}, {"reached_from", failed_from}, {"settled_from", d_eq}});
+            emit(index++, a.hold, a.cycles, a.move_cycles, true, a.lag());
+            r.capacity = d_eq = d_fail;
+            ++r.stable_steps;
+            last_eq = m.save();
+            on_grid = false;
+            continue;
+          }
+          failed = a;
+          failed_state = m.save();
         }
         // The failed state nearest the capacity closes the record.
         m.restore(failed_state);
@@ -223,11 +261,9 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
               << " s): the capacity " << d_eq << " m is the last equilibrium, not a located collapse";
           r.message = msg.str();
         }
-      } else {
-        // Only now: the results handed out on the way say "running", so a run stopped from
-        // outside does not look finished.
-        r.stopped = "max_steps";
+        break;
       }
+      if (!unconfirmed.empty()) r.extra["unconfirmed_failures"] = unconfirmed;
     }
   } catch (const std::exception& e) {
     r.stopped = "error";

@@ -108,7 +108,15 @@ TEST(DemExtremes, FrictionFrom5To90Degrees) {
     const RunResult r = tilt(row.b, row.h, row.phi);
     ASSERT_EQ(r.stopped, "collapse") << r.message;
     const double cap = r.capacity / kDeg;
-    EXPECT_LE(cap, row.expected);
+    // The equilibrium criterion admits an unbalanced force or moment of equilibrium_tolerance x W,
+    // so a state a hair beyond the limit tilt may count as settled: by tol cos(phi) rad for
+    // sliding (the slope force W (sin t - cos t tan phi) grows at W / cos phi per radian), and by
+    // tol r / L for toppling (the moment about the centroid, W L sin t, over r W; L from the
+    // centroid to the corner, r the radius of gyration).
+    const double tol = DemSettings::from_case(test::tilt_case(row.b, row.h, row.phi)).equilibrium_tolerance;
+    const double L = 0.5 * std::hypot(row.b, row.h), rg = std::sqrt((row.b * row.b + row.h * row.h) / 12);
+    const double admitted = (row.slides ? tol * std::cos(row.phi * kDeg) : tol * rg / L) / kDeg;
+    EXPECT_LE(cap, row.expected + admitted);
     EXPECT_GT(cap, row.expected - 1.0);
     const StepRecord& last = r.steps.back();
     if (row.slides) {

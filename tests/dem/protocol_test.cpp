@@ -128,6 +128,35 @@ TEST(DemBracket, CapacityDoesNotMoveWithTheIncrement) {
   EXPECT_NEAR(caps[0], caps[1], 0.03 * kDeg + 2 * resolution);
 }
 
+// A failure that only a long move produces is not the capacity. Supports that tilt the slab by 5
+// degrees in 5 ms and stop dead (the constant-speed protocol without ramps) throw the block into
+// rocking that tips it over at a few degrees of tilt, far below atan(b/h). Every bisection trial
+// below settles, so the failure sits on the increment grid; the short move that confirms it
+// from the last equilibrium settles too, and the run goes on, to topple at atan(b/h) (no
+// friction limit: phi = 90).
+TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
+  const double b = 0.2, h = 0.4;
+  const double topple = std::atan(b / h);
+  const double resolution = 1e-4 * std::sqrt((b * b + h * h) / 12) / (0.5 * std::hypot(b, h));
+  Case c = test::tilt_case(b, h, 90);
+  c.dem.kn = 1e10;
+  c.dem.ks = 4e9;
+  c.dem.move_time = 0.005;
+  c.dem.ramp_fraction = 0;
+  c.motion.step = 5 * kDeg;
+  c.motion.max_steps = 8;
+  const RunResult r = test::tilt_run(c);
+  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  ASSERT_TRUE(r.extra.contains("unconfirmed_failures"));
+  const auto& u = r.extra["unconfirmed_failures"];
+  ASSERT_FALSE(u.empty());
+  // The first failure, from the settled block at 0, at a tilt far below toppling (where the
+  // run would have ended before this stage).
+  EXPECT_LT(u[0]["d"].get<double>(), 0.5 * topple);
+  EXPECT_NEAR(r.capacity, topple, c.dem.bracket_fraction * c.motion.step + 2 * resolution);
+  EXPECT_FALSE(r.steps.back().extra.value("settled", true));
+}
+
 // The bracket goes back to a saved equilibrium: a restored model replays the same cycles bit for
 // bit.
 TEST(DemModelState, RestoreReplaysExactly) {
