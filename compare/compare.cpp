@@ -443,16 +443,14 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
 }
 
 namespace {
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot read");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+std::string read_or_throw(const std::string& path) {
+  std::optional<std::string> text = read_text(path);
+  if (!text) throw std::runtime_error(path + ": cannot read");
+  return std::move(*text);
 }
 }  // namespace
 
-Tolerances load_tolerances(const std::string& path) { return parse_tolerances(read_text(path), path); }
+Tolerances load_tolerances(const std::string& path) { return parse_tolerances(read_or_throw(path), path); }
 
 RunResult parse_results(const std::string& text, const Case& c, const std::string& source) {
   ojson j;
@@ -565,6 +563,6 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
   }
 }
 
-RunResult load_results(const std::string& path, const Case& c) { return parse_results(read_text(path), c, path); }
+RunResult load_results(const std::string& path, const Case& c) { return parse_results(read_or_throw(path), c, path); }
 
 }  // namespace masonry

@@ -1,14 +1,13 @@
 // dem_run: the capacity run, as a sequence of named stages (dem/README.md, "Protocol"):
 // settle the initial configuration, then per increment move and hold; once an increment fails,
 // go back to the last equilibrium and bracket the collapse.
-#include <time.h>
-
 #include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include "dem.hpp"
+#include "io.hpp"
 #include "protocol.hpp"
 
 namespace masonry {
@@ -17,14 +16,6 @@ namespace {
 
 using dem::HoldEnd;
 using dem::HoldOutcome;
-
-// CPU time of the calling thread, s: a run's own cost even when a sweep runs many in parallel
-// threads on fewer cores.
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 // How far a support point travels per unit of d, m/m: its translation plus its rotation over the
 // scene. The work the supports do on the structure over an increment is of the order of the

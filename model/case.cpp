@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "interfaces.hpp"
+#include "io.hpp"
 
 namespace masonry {
 
@@ -456,11 +457,9 @@ Case parse_case(const std::string& text, const std::string& source) {
 }
 
 Case load_case(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaseError(path + ": cannot open the case file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_case(ss.str(), path);
+  const std::optional<std::string> text = read_text(path);
+  if (!text) throw CaseError(path + ": cannot open the case file");
+  return parse_case(*text, path);
 }
 
 std::string case_to_json(const Case& c) {

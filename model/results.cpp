@@ -117,27 +117,6 @@ std::string steps_csv(const RunResult& r) {
   return o.str();
 }
 
-void write_file_atomic(const std::string& path, const std::string& text) {
-  std::error_code ec_ignored;
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    // The reason from errno: a full disk, a missing permission, a read-only file system.
-    if (!out) throw std::runtime_error(tmp + ": cannot write: " + std::strerror(errno));
-    out << text;
-    out.flush();
-    if (!out) {
-      const std::string why = std::strerror(errno);
-      out.close();
-      std::filesystem::remove(tmp, ec_ignored);
-      throw std::runtime_error(tmp + ": write failed: " + why);
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error(path + ": cannot replace: " + ec.message());
-}
-
 void write_results(const std::string& dir, const RunResult& r, const Case& c) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

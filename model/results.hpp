@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "case.hpp"
+#include "io.hpp"
 
 namespace masonry {
 
@@ -114,7 +115,5 @@ std::string steps_csv(const RunResult& r);
 // Writes DIR/results.json and DIR/steps.csv, each through a temporary file and a rename, so a
 // reader (or a later failure) never sees a half-written file. Creates DIR.
 void write_results(const std::string& dir, const RunResult& r, const Case& c);
-// Writes a file atomically (temporary file, then rename).
-void write_file_atomic(const std::string& path, const std::string& text);
 
 }  // namespace masonry

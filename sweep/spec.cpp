@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "generators.hpp"
+#include "io.hpp"
 #include "sweep.hpp"
 
 namespace masonry {
@@ -192,11 +193,9 @@ SweepSpec parse_sweep(const std::string& text, const std::string& source) {
 
 SweepInput read_sweep_input(const std::string& spec_path) {
   const auto slurp = [](const std::string& path, std::string& out) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    std::stringstream ss;
-    ss << in.rdbuf();
-    out = ss.str();
+    std::optional<std::string> text = read_text(path);
+    if (!text) return false;
+    out = std::move(*text);
     return true;
   };
   SweepInput in;

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io.hpp"
 #include "tradeoff.hpp"
 
 namespace masonry {
@@ -260,11 +261,9 @@ Plan parse_plan(const std::string& text, const std::string& source) {
 }
 
 Plan load_plan(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot read the plan file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse_plan(s.str(), path);
+  const std::optional<std::string> text = read_text(path);
+  if (!text) throw std::runtime_error(path + ": cannot read the plan file");
+  return parse_plan(*text, path);
 }
 
 Plan default_plan(bool quick) { return parse_plan(quick ? kQuickPlan : kFullPlan, quick ? "(built-in quick plan)" : "(built-in plan)"); }

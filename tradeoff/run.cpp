@@ -8,8 +8,6 @@
 #include <limits>
 #include <sstream>
 
-#include <time.h>
-
 #include "compare.hpp"
 #include "dem.hpp"
 #include "prd.hpp"
@@ -23,14 +21,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) return "";
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // Whether a run read back had ended: results written while a run is going say "running", and a
 // "max_steps" run must also have reached the end of the path (DEM results written before
 // 2026-11-22 said "max_steps" while going, and a run stopped from outside left them so).
@@ -39,12 +29,6 @@ bool finished(const RunResult& r, const Case& c) {
   if (r.stopped != "max_steps" || r.steps.empty()) return false;
   const double end = c.motion.step * c.motion.max_steps;
   return r.steps.back().d >= end * (1 - 1e-9);
-}
-
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 // One run of a planned setting. Exceptions become a run stopped by "error" with the message, so
@@ -159,7 +143,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
     } else {
       const std::string case_text = case_to_json(p.c);
       bool done = false;
-      if (o.resume && !dir.empty() && read_text(fs::path(dir) / "case.json") == case_text &&
+      if (o.resume && !dir.empty() && read_text((fs::path(dir) / "case.json").string()) == case_text &&
           fs::exists(fs::path(dir) / "results.json")) {
         try {
           RunResult old = load_results((fs::path(dir) / "results.json").string(), base);
@@ -168,7 +152,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
             r = std::move(old);
             times.wall.push_back(r.timing.total_s);
             // The repeats' times as measured when it ran, if it ran here.
-            const std::string tj = read_text(fs::path(dir) / "timing.json");
+            const std::string tj = read_text((fs::path(dir) / "timing.json").string()).value_or("");
             if (!tj.empty()) {
               const auto j = nlohmann::json::parse(tj, nullptr, false);
               if (j.is_object() && j.contains("cpu_s") && j.contains("total_s") && j["cpu_s"].is_array() && j["total_s"].is_array() &&

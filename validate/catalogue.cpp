@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "generators.hpp"
+#include "io.hpp"
 
 namespace masonry {
 
@@ -260,11 +261,9 @@ Catalogue parse_catalogue(const std::string& text, const std::string& source, co
 }
 
 Catalogue load_catalogue(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaseError(path + ": cannot read the catalogue");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return parse_catalogue(s.str(), path, std::filesystem::path(path).parent_path().string());
+  const std::optional<std::string> text = read_text(path);
+  if (!text) throw CaseError(path + ": cannot read the catalogue");
+  return parse_catalogue(*text, path, std::filesystem::path(path).parent_path().string());
 }
 
 namespace {

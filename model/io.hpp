@@ -1,0 +1,19 @@
+// Files and clocks, one definition each for every library of the harness.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace masonry {
+
+// The whole file as bytes; nothing when it cannot be opened (each caller says what the file was
+// for in its own error).
+std::optional<std::string> read_text(const std::string& path);
+// Writes a file atomically (temporary file, then rename), so a reader (or a later failure) never
+// sees a half-written file. Throws std::runtime_error with errno's reason.
+void write_file_atomic(const std::string& path, const std::string& text);
+// CPU time of the calling thread, s: a run's own cost even when a sweep or a study runs many in
+// parallel threads on fewer cores.
+double thread_cpu_s();
+
+}  // namespace masonry
