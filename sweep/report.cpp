@@ -42,7 +42,7 @@ const SweepRow* curve_prd(const SweepPlan& p, const SweepTable& t, const SweepCu
     prd = p.runs[i].prd;
   }
   const SweepRow* r = row_at(t, prd);
-  return r && r->stopped != "error" ? r : nullptr;
+  return r && located(*r) ? r : nullptr;
 }
 
 // An option's value for people: numbers to 6 digits (sweep.csv keeps every digit).
@@ -135,7 +135,7 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
   for (const SweepRun& r : p.runs) prd += r.method == "prd";
   c.lead = "Case " + p.base.name + " (sweep file " + p.source + ", plan " + p.hash + "): " + std::to_string(p.runs.size()) + " runs (" +
            std::to_string(prd) + " PRD, " + std::to_string(p.runs.size() - prd) + " DEM), " + std::to_string(s.finished) + " finished, " +
-           std::to_string(s.errors) + " failed. Capacity: the last stable d (m); difference: (DEM - PRD) / PRD; tolerance " +
+           std::to_string(s.errors) + " without a located capacity (failed, or a DEM hold undecided). Capacity: the last stable d (m); difference: (DEM - PRD) / PRD; tolerance " +
            fmt::g(p.tolerance * 100) + "%.";
   c.has_figure = !s.x.empty() && !s.curves.empty();
   const bool dem = any_dem(p);
@@ -240,7 +240,7 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
     for (int i : c.runs) {
       cover_x(x_of(p, s, i));
       ymax = std::max(ymax, t[i]->capacity);
-      if (const SweepRow* pr = dem ? row_at(t, p.runs[i].prd) : nullptr; pr && pr->stopped != "error") ymax = std::max(ymax, pr->capacity);
+      if (const SweepRow* pr = dem ? row_at(t, p.runs[i].prd) : nullptr; pr && located(*pr)) ymax = std::max(ymax, pr->capacity);
     }
     if (const SweepRow* pr = curve_prd(p, t, c); fx && pr && pr->required_friction_angle) cover_x(*pr->required_friction_angle);
   }
@@ -282,7 +282,7 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
         pts = f1(X(xlo)) + "," + f1(Y(pr->capacity)) + " " + f1(X(xhi)) + "," + f1(Y(pr->capacity));
       } else {
         for (int i : c.runs)
-          if (const SweepRow* q = row_at(t, p.runs[i].prd); q && q->stopped != "error")
+          if (const SweepRow* q = row_at(t, p.runs[i].prd); q && located(*q))
             pts += f1(X(x_of(p, s, i))) + "," + f1(Y(q->capacity)) + " ";
       }
       if (!pts.empty())

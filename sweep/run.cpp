@@ -33,7 +33,7 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run) {
     row.time_s = r.timing.total_s;
     row.message = r.message;
     row.stopped = r.stopped;
-    if (r.stopped != "collapse" && r.stopped != "max_steps") {
+    if (r.stopped != "collapse" && r.stopped != "max_steps" && r.stopped != "undecided") {
       row.stopped = "error";
       if (row.message.empty()) row.message = "the run ended as '" + r.stopped + "'";
     }

@@ -88,13 +88,18 @@ struct SweepRow {
   int index = -1;
   std::string id;
   std::string method;
-  std::string stopped;  // "collapse", "max_steps" or "error"
+  // "collapse", "max_steps", "undecided" (a DEM hold that neither settled nor ran away: the
+  // capacity is the last equilibrium, not a located collapse) or "error".
+  std::string stopped;
   double capacity = 0;  // m, the last stable d; not shown for an error
   double time_s = 0;    // run time without I/O
   std::string message;  // one line
-  // PRD: extra.sliding.required_friction_angle of the run (deg), when the solver gives it.
+  // PRD: the sliding check's required_friction_angle of the run (deg), when the solver gives it.
   std::optional<double> required_friction_angle;
 };
+// Whether the row's capacity is a located answer (collapse or the end of the path): only those
+// are compared, drawn and counted as done; an undecided or failed row is listed with its reason.
+bool located(const SweepRow& r);
 nlohmann::json row_to_json(const SweepRow& r);
 SweepRow row_from_json(const nlohmann::json& j);
 

@@ -92,8 +92,10 @@ SweepRow row_from_json(const json& j) {
   return r;
 }
 
+bool located(const SweepRow& r) { return r.stopped == "collapse" || r.stopped == "max_steps"; }
+
 std::optional<double> diff_prd(const SweepRow& dem, const SweepRow* prd) {
-  if (!prd || dem.stopped == "error" || prd->stopped == "error" || prd->capacity == 0) return std::nullopt;
+  if (!prd || !located(dem) || !located(*prd) || prd->capacity == 0) return std::nullopt;
   const double d = (dem.capacity - prd->capacity) / prd->capacity;
   if (!std::isfinite(d)) return std::nullopt;
   return d;
@@ -162,7 +164,7 @@ SweepTable read_sweep_csv(const SweepPlan& p, const std::string& text, const std
     r.method = run.method;
     r.stopped = f[3 + nk + 1];
     r.message = f[3 + nk + 5];
-    ok = ok && (r.stopped == "collapse" || r.stopped == "max_steps" || r.stopped == "error");
+    ok = ok && (r.stopped == "collapse" || r.stopped == "max_steps" || r.stopped == "undecided" || r.stopped == "error");
     ok = ok && parse_number(f[3 + nk + 2], r.time_s);
     if (r.stopped != "error") ok = ok && parse_number(f[3 + nk], r.capacity);
     double angle = 0;
@@ -179,7 +181,7 @@ SweepSummary summarize(const SweepPlan& p, const SweepTable& t) {
   SweepSummary s;
   for (const auto& r : t) {
     s.finished += r.has_value();
-    s.errors += r && r->stopped == "error";
+    s.errors += r && !located(*r);
   }
   // The curves are the DEM runs, or the PRD runs in a sweep without DEM; x is the friction angle
   // when it varies, else the first option whose values in those runs are all numbers.
@@ -209,7 +211,7 @@ SweepSummary summarize(const SweepPlan& p, const SweepTable& t) {
       s.curves.push_back(std::move(c));
     }
     const SweepRow* row = row_at(t, r.index);
-    if (row && row->stopped != "error") s.curves[it->second].runs.push_back(r.index);
+    if (row && located(*row)) s.curves[it->second].runs.push_back(r.index);
   }
   for (SweepCurve& c : s.curves) {
     std::stable_sort(c.runs.begin(), c.runs.end(),

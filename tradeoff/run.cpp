@@ -25,7 +25,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // "max_steps" run must also have reached the end of the path (DEM results written before
 // 2026-11-22 said "max_steps" while going, and a run stopped from outside left them so).
 bool finished(const RunResult& r, const Case& c) {
-  if (r.stopped == "collapse" || r.stopped == "error") return true;
+  if (r.stopped == "collapse" || r.stopped == "undecided" || r.stopped == "error") return true;
   if (r.stopped != "max_steps" || r.steps.empty()) return false;
   const double end = c.motion.step * c.motion.max_steps;
   return r.steps.back().d >= end * (1 - 1e-9);

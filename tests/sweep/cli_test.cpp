@@ -84,6 +84,27 @@ TEST(SweepCommand, AFailedRunIsARowAndTheSweepGoesOn) {
   EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 1) << e;
 }
 
+// A DEM run whose hold neither settles nor runs away (near-total damping, soft joints, a 0.2 s
+// cap: the block has not settled when the cap comes) is listed as undecided with the DEM's
+// reason, not turned into an error, and is neither compared nor counted as done.
+TEST(SweepCommand, AnUndecidedDemRunIsAnUndecidedRow) {
+  test::Scratch d("undecided");
+  test::write(d.path / "s.json",
+              spec(R"("methods": ["dem"], "set": {"dem.kn": 1e6, "dem.ks": 4e5, "dem.damping": 0.9999, "dem.hold_time": 0.2},
+                      "vary": {"dem.friction_angle": [35]})"));
+  const fs::path out = d.path / "out", err = d.path / "err.txt";
+  EXPECT_EQ(test::run(kExe + " sweep " + (d.path / "s.json").string() + " --out " + out.string() + " 2>" + err.string()), 1)
+      << test::read(err);
+  const auto rows = test::csv_rows(test::read(out / "sweep.csv"));
+  ASSERT_EQ(rows.size(), 2u) << test::read(out / "sweep.csv");
+  const size_t st = test::column(rows[0], "stopped"), msg = test::column(rows[0], "message");
+  ASSERT_LT(msg, rows[0].size());
+  EXPECT_EQ(rows[1][st], "undecided");
+  EXPECT_NE(rows[1][msg].find("neither settled nor ran away"), std::string::npos) << rows[1][msg];
+  const auto j = nlohmann::json::parse(test::read(out / "sweep.json"));
+  EXPECT_EQ(j["failed"], 1);
+}
+
 TEST(SweepCommand, AKilledSweepResumesWithTheMissingRunsOnly) {
   test::Scratch d("resume");
   // One run at a time, each slowed down (seconds of model time per degree of tilt), and enough
