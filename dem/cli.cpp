@@ -22,7 +22,7 @@ struct Opts {
   std::optional<double> friction, reduction, damping, factor, eq_tol, vel_tol, hold, step, move_time, ramp, drift, open_gap, kinetic,
       bracket;
   std::optional<int> max_steps;
-  bool quiet = false, convergence = false;
+  bool quiet = false, convergence = false, confirm = false;
   int jobs = 2;
   double spread_limit = 0.02, prd_limit = 0.03;
 };
@@ -93,6 +93,9 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   sub->add_option("--kinetic-ratio", o->kinetic, "Moves keep the kinetic energy below this x total weight x increment (default 1e-3)");
   sub->add_option("--move-time", o->move_time, "Constant-speed move over this model time per increment, s, instead of the kinetic-energy servo (default 0: servo)");
   sub->add_option("--bracket-fraction", o->bracket, "Bisect a failed increment down to this fraction of the step (default 0.01; 0: no bisection)");
+  sub->add_flag("--confirm-collapse", o->confirm,
+                "Confirm a located collapse by the short move from the bracket's last equilibrium; a failure it does not reproduce "
+                "becomes an equilibrium and the run goes on (dem/README.md, stage 4; off by default)");
   sub->add_option("--ramp-fraction", o->ramp, "Fraction of the move time spent speeding up (and slowing down), 0..0.5 (default 0.25; 0: abrupt)");
   sub->add_option("--collapse-drift", o->drift, "Block travel within an unsettled hold that means collapse, m (default 2% of scene)");
   sub->add_option("--open-gap", o->open_gap, "Gap above which a joint corner is open, m (default prd.contact_tolerance)");
@@ -118,6 +121,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    if (o->move_time) s.move_time = *o->move_time;
                    if (o->kinetic) s.kinetic_ratio = *o->kinetic;
                    if (o->bracket) s.bracket_fraction = *o->bracket;
+                   if (o->confirm) s.confirm_collapse = true;
                    if (o->ramp) s.ramp_fraction = *o->ramp;
                    if (o->drift) s.collapse_drift = *o->drift;
                    if (o->open_gap) s.open_gap = *o->open_gap;

@@ -86,7 +86,7 @@ const char* hold_end_name(HoldEnd e) {
   return "?";
 }
 
-HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim) {
+HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim, long long watch) {
   HoldOutcome o;
   const std::vector<Vec2> start = positions(m, c);
   const long long budget = static_cast<long long>(std::ceil(s.hold_time / m.dt()));
@@ -97,7 +97,8 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     m.cycle();
     ++o.cycles;
     check_finite(m);
-    if (m.unbalanced_ratio() < s.equilibrium_tolerance && m.max_speed() < s.velocity_tolerance) {
+    const bool at_rest = m.unbalanced_ratio() < s.equilibrium_tolerance && m.max_speed() < s.velocity_tolerance;
+    if (at_rest && k + 1 >= std::min(watch, budget)) {
       o.end = HoldEnd::equilibrium;
       break;
     }
@@ -125,19 +126,26 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
   return o;
 }
 
-MoveOutcome move(DemModel& m, const DemSettings& s, double d0, double d1, double ke_target, double start_speed,
-                 const Limits& lim) {
+MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_target,
+                 double start_speed, const Limits& lim) {
   MoveOutcome o;
   const double dt = m.dt();
+  const std::vector<Vec2> start = positions(m, c);
+  // The periodic checks: the energy balance, and whether the structure collapsed on the way.
+  auto collapsed = [&](long long cycle) {
+    if (cycle % kCheckEvery != 0) return false;
+    check_energy(m, lim.energy_floor);
+    return o.collapsed = largest_move(m, c, start) > lim.move_drift;
+  };
   if (s.move_time > 0) {
     const long long n = std::max<long long>(1, static_cast<long long>(std::ceil(s.move_time / dt)));
     for (long long i = 1; i <= n; ++i) {
       m.set_support_parameter(d0 + (d1 - d0) * travelled(static_cast<double>(i) / static_cast<double>(n), s.ramp_fraction));
       m.cycle();
+      ++o.cycles;
       check_finite(m);
-      if (i % kCheckEvery == 0) check_energy(m, lim.energy_floor);
+      if (collapsed(i)) break;
     }
-    o.cycles = n;
     o.speed = (d1 - d0) / s.move_time;
     return o;
   }
@@ -155,7 +163,7 @@ MoveOutcome move(DemModel& m, const DemSettings& s, double d0, double d1, double
     m.cycle();
     ++o.cycles;
     check_finite(m);
-    if (o.cycles % kCheckEvery == 0) check_energy(m, lim.energy_floor);
+    if (collapsed(o.cycles)) break;
     // Braking from v at kDown per cycle travels v dt / (1 - kDown).
     const bool brake = d1 - d < v * dt / (1 - kDown);
     v = !brake && m.kinetic_energy() < ke_target ? v * kUp : std::max(floor, v * kDown);

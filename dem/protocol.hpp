@@ -4,6 +4,7 @@
 // kinetic energy allows. Internal to dem/: dem_run strings them together.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "dem.hpp"
@@ -20,6 +21,9 @@ const char* hold_end_name(HoldEnd e);
 // What the stages need besides the model and the settings.
 struct Limits {
   double collapse_drift = 0;  // m
+  // m: the largest block displacement a move may carry, its support travel plus collapse_drift;
+  // beyond it the structure collapsed during the move (a slow move can carry a whole toppling).
+  double move_drift = INFINITY;
   double energy_floor = 0;    // J, floor of the blow-up guard
   // J: kinetic energy above which, growing over consecutive windows of a hold, the structure is
   // running away (infinite: only the drift decides, as for the settling at d = 0).
@@ -38,10 +42,16 @@ std::vector<Vec2> positions(const DemModel& m, const Case& c);
 double largest_move(const DemModel& m, const Case& c, const std::vector<Vec2>& from);
 
 // Cycles with the supports where they are until one of the three ends. Throws
-// std::runtime_error when the state turns non-finite or the energy balance is broken.
-HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim);
+// std::runtime_error when the state turns non-finite or the energy balance is broken. With
+// `watch` > 0 an equilibrium reached before `watch` cycles (or the cap) does not end the hold:
+// the collapse criteria go on being checked, and only an equilibrium after that ends it. A
+// structure tipping past an unstable equilibrium starts from rest with an unbalanced force
+// below the tolerance, so it meets the equilibrium criteria at first and only its growing motion
+// shows what it is.
+HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim, long long watch = 0);
 
 struct MoveOutcome {
+  bool collapsed = false;  // a block moved farther than lim.move_drift: the move stopped there
   long long cycles = 0;
   double speed = 0;  // the support speed (of d, m/s) at the end of the move
 };
@@ -50,7 +60,7 @@ struct MoveOutcome {
 // 0.2% per cycle while the kinetic energy is below `ke_target` and shrinks by 2% per cycle while
 // above and while braking to stop at d1, starting from `start_speed`, never below
 // (d1 - d0) / hold_time; with move_time > 0, the constant-speed move with half-cosine ramps.
-MoveOutcome move(DemModel& m, const DemSettings& s, double d0, double d1, double ke_target, double start_speed,
-                 const Limits& lim);
+MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_target,
+                 double start_speed, const Limits& lim);
 
 }  // namespace masonry::dem

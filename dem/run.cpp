@@ -120,18 +120,23 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   // The support speed at the end of the last move: the next move starts at a quarter of it, so
   // the servo need not find the structure's pace again from the floor every increment.
   double speed = 0;
-  auto attempt = [&](double d0, double d1) {
+  auto attempt = [&](double d0, double d1, long long watch = 0) {
     Attempt a;
     const long long c0 = m.cycles();
     const double ke_target = ke_per_d * (d1 - d0);
     lim.ke_collapse = 10 * ke_target;
+    lim.move_drift = lim.collapse_drift + support_travel_per_d(c) * (d1 - d0);
     const std::vector<Vec2> before = dem::positions(m, c);
-    const dem::MoveOutcome mv = dem::move(m, s, d0, d1, ke_target, speed / 4, lim);
+    const dem::MoveOutcome mv = dem::move(m, c, s, d0, d1, ke_target, speed / 4, lim);
     speed = mv.speed;
     a.move_cycles = mv.cycles;
     a.move_drift = dem::largest_move(m, c, before);
-    m.set_support_parameter(d1);
-    a.hold = dem::hold(m, c, s, lim);
+    if (mv.collapsed) {
+      a.hold.end = HoldEnd::collapse;  // no hold: the structure fell during the move
+    } else {
+      m.set_support_parameter(d1);
+      a.hold = dem::hold(m, c, s, lim, watch);
+    }
     a.cycles = m.cycles() - c0;
     return a;
   };
@@ -219,10 +224,15 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
         // not, the longer move's own dynamics tipped the structure over (every trial below
         // d_fail settling is the sign: the failure sits on the increment grid), so d_fail is
         // an equilibrium, not the capacity, and the increments go on from there.
-        if (bracket > 0 && failed_from < d_eq) {
+        if (s.confirm_collapse && bracket > 0 && failed_from < d_eq) {
           m.restore(last_eq);
           speed = 0;
-          const Attempt a = attempt(d_eq, d_fail);
+          // The confirming hold does not end at the first equilibrium: past an unstable one
+          // the structure starts from rest, so the hold watches four times as long as the
+          // failure took to show itself (at most the cap) before it calls the state settled.
+          // (A perturbation 100 times smaller, a move under 1% of the step, takes ln 100 = 4.6
+          // more growth times to reach the same size.)
+          const Attempt a = attempt(d_eq, d_fail, 4 * failed.hold.cycles);
           trials.push_back({{"d", d_fail}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}, {"confirm", true}});
           if (a.hold.end == HoldEnd::equilibrium) {
             unconfirmed.push_back({{"d", d_fail}, {"reached_from", failed_from}, {"settled_from", d_eq}});

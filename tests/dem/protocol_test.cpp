@@ -145,7 +145,10 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
   c.dem.ramp_fraction = 0;
   c.motion.step = 5 * kDeg;
   c.motion.max_steps = 8;
-  const RunResult r = test::tilt_run(c);
+  DemSettings s = DemSettings::from_case(c);
+  s.collapse_drift = 0.02;
+  s.confirm_collapse = true;
+  const RunResult r = dem_run(c, s);
   ASSERT_EQ(r.stopped, "collapse") << r.message;
   ASSERT_TRUE(r.extra.contains("unconfirmed_failures"));
   const auto& u = r.extra["unconfirmed_failures"];
@@ -155,6 +158,10 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
   EXPECT_LT(u[0]["d"].get<double>(), 0.5 * topple);
   EXPECT_NEAR(r.capacity, topple, c.dem.bracket_fraction * c.motion.step + 2 * resolution);
   EXPECT_FALSE(r.steps.back().extra.value("settled", true));
+  // Without the stage the run ends at that first failure.
+  s.confirm_collapse = false;
+  const RunResult plain = dem_run(c, s);
+  EXPECT_LT(plain.capacity, 0.5 * topple);
 }
 
 // The bracket goes back to a saved equilibrium: a restored model replays the same cycles bit for
