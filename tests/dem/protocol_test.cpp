@@ -164,6 +164,27 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
   EXPECT_LT(plain.capacity, 0.5 * topple);
 }
 
+// A collapse that happens during a move is a collapse. With damping 0.6 and a quarter of the
+// default kinetic ratio, the support tilts so slowly that the block topples and lands on its side
+// within one move; the hold then found the fallen block at rest and counted it as an equilibrium,
+// so the block "stood" until it slid at the friction angle, 35 degrees. A block carried farther
+// than collapse_drift plus the support's own travel ends the move as a collapse, at atan(b/h).
+TEST(DemBracket, ACollapseDuringAMoveIsACollapse) {
+  const double b = 0.2, h = 0.4;
+  const double topple = std::atan(b / h);
+  const double resolution = 1e-4 * std::sqrt((b * b + h * h) / 12) / (0.5 * std::hypot(b, h));
+  Case c = test::tilt_case(b, h, 35);
+  c.dem.damping = 0.6;
+  c.dem.kinetic_ratio = 2.5e-4;
+  c.motion.max_steps = 40;
+  const RunResult r = test::tilt_run(c);
+  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  // The soft joints of the test scenes let the toe's elastic overlap tip the block early, by
+  // overlap / b: 0.07 degrees here (DemBracket.CapacityDoesNotMoveWithTheIncrement).
+  EXPECT_LE(r.capacity, topple + 2 * resolution);
+  EXPECT_GT(r.capacity, topple - 0.1 * kDeg);
+}
+
 // The bracket goes back to a saved equilibrium: a restored model replays the same cycles bit for
 // bit.
 TEST(DemModelState, RestoreReplaysExactly) {
