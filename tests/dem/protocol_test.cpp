@@ -96,14 +96,18 @@ TEST(DemHold, UndecidedInitialStateIsNoCapacity) {
   EXPECT_NE(r.message.find("neither settled nor ran away"), std::string::npos) << r.message;
 }
 
+// How far past the tipping point of a b x h block (rad of tilt) the equilibrium criterion can
+// still call it settled: an unbalanced moment of 1e-4 W r (r the radius of gyration) is a tilt of
+// 1e-4 r / (half the diagonal) past it.
+double tipping_resolution(double b, double h) { return 1e-4 * std::sqrt((b * b + h * h) / 12) / (0.5 * std::hypot(b, h)); }
+
 // Toppling at atan(b/h) is located within the bracket whatever the increment: 1 and 3 degrees
 // both give it within their bracket (1% of the increment) plus twice the equilibrium
-// tolerance's resolution of the tipping point (an unbalanced moment of 1e-4 W r, r the radius of
-// gyration, is 1e-4 r / (half the diagonal) rad of tilt past it).
+// tolerance's resolution of the tipping point (tipping_resolution).
 TEST(DemBracket, CapacityDoesNotMoveWithTheIncrement) {
   const double b = 0.2, h = 0.4;
   const double topple = std::atan(b / h);
-  const double resolution = 1e-4 * std::sqrt((b * b + h * h) / 12) / (0.5 * std::hypot(b, h));
+  const double resolution = tipping_resolution(b, h);
   double caps[2];
   int k = 0;
   for (const double step_deg : {1.0, 3.0}) {
@@ -137,7 +141,7 @@ TEST(DemBracket, CapacityDoesNotMoveWithTheIncrement) {
 TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
   const double b = 0.2, h = 0.4;
   const double topple = std::atan(b / h);
-  const double resolution = 1e-4 * std::sqrt((b * b + h * h) / 12) / (0.5 * std::hypot(b, h));
+  const double resolution = tipping_resolution(b, h);
   Case c = test::tilt_case(b, h, 90);
   c.dem.kn = 1e10;
   c.dem.ks = 4e9;
@@ -172,7 +176,7 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
 TEST(DemBracket, ACollapseDuringAMoveIsACollapse) {
   const double b = 0.2, h = 0.4;
   const double topple = std::atan(b / h);
-  const double resolution = 1e-4 * std::sqrt((b * b + h * h) / 12) / (0.5 * std::hypot(b, h));
+  const double resolution = tipping_resolution(b, h);
   Case c = test::tilt_case(b, h, 35);
   c.dem.damping = 0.6;
   c.dem.kinetic_ratio = 2.5e-4;
