@@ -133,7 +133,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
   rep.frames = o.frames;
   write_report(o.out_dir, rep);
   bool failed = false, errored = false;
-  for (const RunResult& r : results) errored = errored || r.stopped == "error";
+  for (const RunResult& r : results) errored = errored || r.status == RunStatus::error;
   for (size_t k = 0; k < rep.comparisons.size(); ++k) {
     const Comparison& cmp = rep.comparisons[k];
     std::fprintf(stderr, "compare: %s: %s %.4g m, %s %.4g m (%+.1f%%), thrust difference max %.3g W rms %.3g W, times %.3g s / %.3g s\n",

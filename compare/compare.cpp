@@ -105,7 +105,7 @@ RunSummary summarise(const RunResult& r, const std::string& label, int min_state
   s.label = label.empty() ? (r.method == "prd" ? "PRD" : r.method == "dem" ? "DEM" : r.method) : label;
   s.capacity = r.capacity;
   s.collapsed = r.collapsed;
-  s.stopped = r.stopped;
+  s.status = r.status;
   s.step = record_step(stable_records(r));
   s.time_s = r.timing.total_s;
   s.changes = mechanism_changes(r, min_state_records);
@@ -118,7 +118,7 @@ ojson summary_json(const RunSummary& s) {
   j["method"] = s.method;
   j["capacity"] = num(s.capacity);
   j["collapsed"] = s.collapsed;
-  j["stopped"] = s.stopped;
+  j["stopped"] = status_name(s.status);
   j["step"] = num(s.step);
   j["time_s"] = num(s.time_s);
   ojson ch = ojson::array();
@@ -483,7 +483,10 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
     r.capacity = dbl(j.at("capacity"), "capacity");
     r.stable_steps = j.value("stable_steps", 0);
     r.collapsed = j.value("collapsed", false);
-    r.stopped = j.value("stopped", "");
+    const std::string stopped = j.value("stopped", "");
+    const std::optional<RunStatus> status = parse_status(stopped);
+    if (!status) throw fail("stopped: \"" + stopped + "\" is not a run status (running, collapse, max_steps, undecided, error)");
+    r.status = *status;
     r.message = j.value("message", "");
     r.total_weight = dbl(j.at("total_weight"), "total_weight");
     if (j.contains("settings")) r.settings = j["settings"];

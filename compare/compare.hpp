@@ -56,7 +56,7 @@ struct RunSummary {
   std::string method;      // "prd" or "dem"
   double capacity = 0.0;   // m
   bool collapsed = false;
-  std::string stopped;
+  RunStatus status = RunStatus::running;
   double step = 0.0;       // m, the run's increment (from the records)
   double time_s = 0.0;     // run time without I/O
   std::vector<double> changes;  // d (m) where the mechanism changes

@@ -13,8 +13,6 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-bool finished(const RunResult& r) { return r.stopped == "collapse" || r.stopped == "max_steps"; }
-
 std::string pct(double x) { return fmt::number(100 * x, "%+.2f%%", 100 * x); }
 
 ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
@@ -30,9 +28,9 @@ ConvergenceVerdict judge(const Convergence& c) {
   v.complete = true;
   double lo = INFINITY, hi = -INFINITY;
   for (const ConvergenceEntry& e : c.entries) {
-    if (!finished(e.run)) {
+    if (!located(e.run.status)) {
       v.complete = false;
-      v.problems.push_back(e.name + " (" + e.what + ") stopped with " + e.run.stopped + (e.run.message.empty() ? "" : ": " + e.run.message));
+      v.problems.push_back(e.name + " (" + e.what + ") stopped with " + status_name(e.run.status) + std::string(e.run.message.empty() ? "" : ": " + e.run.message));
       continue;
     }
     lo = std::min(lo, e.run.capacity);
@@ -40,7 +38,7 @@ ConvergenceVerdict judge(const Convergence& c) {
   }
   const double base = c.entries.front().run.capacity;
   if (v.complete && base > 0) v.spread = (hi - lo) / base;
-  if (c.prd_capacity && *c.prd_capacity > 0 && finished(c.entries.front().run)) v.prd_error = (base - *c.prd_capacity) / *c.prd_capacity;
+  if (c.prd_capacity && *c.prd_capacity > 0 && located(c.entries.front().run.status)) v.prd_error = (base - *c.prd_capacity) / *c.prd_capacity;
   if (v.complete && !(v.spread <= c.spread_limit))
     v.problems.push_back("the capacities spread by " + fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) + " of the default's, more than " +
                          fmt::g(100 * c.spread_limit) + "%");
@@ -69,10 +67,10 @@ ojson convergence_json(const Convergence& c) {
     ojson r;
     r["name"] = e.name;
     r["what"] = e.what;
-    r["stopped"] = e.run.stopped;
-    r["capacity"] = finished(e.run) ? ojson(e.run.capacity) : ojson(nullptr);
-    r["against_default"] = finished(e.run) && base > 0 ? num((e.run.capacity - base) / base) : ojson(nullptr);
-    r["against_prd"] = finished(e.run) && c.prd_capacity ? num((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : ojson(nullptr);
+    r["stopped"] = status_name(e.run.status);
+    r["capacity"] = located(e.run.status) ? ojson(e.run.capacity) : ojson(nullptr);
+    r["against_default"] = located(e.run.status) && base > 0 ? num((e.run.capacity - base) / base) : ojson(nullptr);
+    r["against_prd"] = located(e.run.status) && c.prd_capacity ? num((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : ojson(nullptr);
     r["bracket_width"] = e.run.extra.contains("collapse_bracket") ? e.run.extra["collapse_bracket"]["width"] : ojson(nullptr);
     r["cpu_s"] = e.run.timing.total_s;
     r["cycles"] = e.run.timing.cycles;
@@ -93,9 +91,9 @@ std::string convergence_markdown(const Convergence& c) {
   o << "|---|---|---|---|---|---|---|---|---|\n";
   const double base = c.entries.empty() ? NAN : c.entries.front().run.capacity;
   for (const ConvergenceEntry& e : c.entries) {
-    const bool ok = finished(e.run);
+    const bool ok = located(e.run.status);
     const double width = e.run.extra.contains("collapse_bracket") ? e.run.extra["collapse_bracket"]["width"].get<double>() : NAN;
-    o << "| " << md_escape(e.name) << " | " << md_escape(e.what) << " | " << e.run.stopped << " | "
+    o << "| " << md_escape(e.name) << " | " << md_escape(e.what) << " | " << status_name(e.run.status) << " | "
       << (ok ? fmt::number(e.run.capacity, "%.4f", e.run.capacity) : "n/a") << " | "
       << (ok && base > 0 ? pct((e.run.capacity - base) / base) : "n/a") << " | "
       << (ok && c.prd_capacity ? pct((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : "n/a") << " | "

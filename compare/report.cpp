@@ -151,7 +151,7 @@ ojson report_json(const Report& r) {
                     {"dir", rr.dir},
                     {"capacity", num(rr.run->capacity)},
                     {"collapsed", rr.run->collapsed},
-                    {"stopped", rr.run->stopped},
+                    {"stopped", status_name(rr.run->status)},
                     {"time_s", num(rr.run->timing.total_s)},
                     {"settings", rr.run->settings}});
   j["runs"] = runs;
@@ -295,7 +295,7 @@ std::string report_markdown(const Report& r, const std::vector<Figure>& figures)
     std::string settings = rr.run->settings.dump();  // numbers and keys of ours: shown as code
     std::replace(settings.begin(), settings.end(), '`', '\'');
     std::replace(settings.begin(), settings.end(), '|', '/');
-    o << " | " << md_escape(rr.run->stopped) << " | `" << settings << "` |\n";
+    o << " | " << status_name(rr.run->status) << " | `" << settings << "` |\n";
   }
   o << "\nNumbers: `comparison.json`.\n";
   return o.str();

@@ -35,7 +35,7 @@ int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
   study.spread_limit = o.spread_limit;
   study.prd_limit = o.prd_limit;
   const RunResult prd = prd_run(c, PrdSettings::from_case(c), {});
-  if (prd.stopped == "collapse" || prd.stopped == "max_steps") study.prd_capacity = prd.capacity;
+  if (located(prd.status)) study.prd_capacity = prd.capacity;
   const std::vector<DemVariant> variants = convergence_variants(base);
   std::mutex io;
   const std::vector<RunResult> runs = run_variants(
@@ -47,7 +47,7 @@ int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
         write_results((std::filesystem::path(o.out_dir) / variants[i].name).string(), r, c);
         if (o.quiet) return;
         std::lock_guard<std::mutex> lock(io);
-        std::fprintf(stderr, "dem convergence: %-15s %s, capacity %.6g m, %.3g s CPU\n", variants[i].name.c_str(), r.stopped.c_str(),
+        std::fprintf(stderr, "dem convergence: %-15s %s, capacity %.6g m, %.3g s CPU\n", variants[i].name.c_str(), status_name(r.status),
                      r.capacity, r.timing.total_s);
       });
   for (size_t i = 0; i < variants.size(); ++i) study.entries.push_back({variants[i].name, variants[i].what, runs[i]});
@@ -142,10 +142,10 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    write_results(o->out_dir, r, c);
                    if (!o->quiet)
                      std::fprintf(stderr, "dem: %s, capacity %.6g m after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n",
-                                  r.stopped.c_str(), r.capacity, r.stable_steps, r.timing.cycles, r.timing.total_s,
+                                  status_name(r.status), r.capacity, r.stable_steps, r.timing.cycles, r.timing.total_s,
                                   r.settings.value("dt", 0.0));
-                   if (r.stopped == "error") throw std::runtime_error(r.message);
-                   if (r.stopped == "undecided") std::fprintf(stderr, "dem: %s\n", r.message.c_str());
+                   if (r.status == RunStatus::error) throw std::runtime_error(r.message);
+                   if (r.status == RunStatus::undecided) std::fprintf(stderr, "dem: %s\n", r.message.c_str());
                    return 0;
                  }});
 }

@@ -151,7 +151,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
     emit(0, h0, h0.cycles, 0, false, 0.0);  // absolute gaps: the settled crack pattern
     if (h0.end != HoldEnd::equilibrium) {
       r.collapsed = h0.end == HoldEnd::collapse;
-      r.stopped = r.collapsed ? "collapse" : "undecided";
+      r.status = r.collapsed ? RunStatus::collapse : RunStatus::undecided;
       if (!r.collapsed)
         r.message = "the initial configuration neither settled nor ran away within the hold cap (" + std::to_string(s.hold_time) +
                     " s): no capacity";
@@ -189,7 +189,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
         if (!failure) {
           // Only now: the results handed out on the way say "running", so a run stopped from
           // outside does not look finished.
-          r.stopped = "max_steps";
+          r.status = RunStatus::max_steps;
           break;
         }
         // Stage 3: the collapse bracket. Back to the last equilibrium, halve the failed
@@ -255,7 +255,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
         bool any_collapse = false;
         for (const auto& t : trials) any_collapse = any_collapse || t["end"] == "collapse";
         r.collapsed = any_collapse;
-        r.stopped = r.collapsed ? "collapse" : "undecided";
+        r.status = r.collapsed ? RunStatus::collapse : RunStatus::undecided;
         if (!r.collapsed) {
           std::ostringstream msg;
           msg << "the hold at d = " << d_fail << " m neither settled nor ran away within the hold cap (" << s.hold_time
@@ -267,7 +267,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
       if (!unconfirmed.empty()) r.extra["unconfirmed_failures"] = unconfirmed;
     }
   } catch (const std::exception& e) {
-    r.stopped = "error";
+    r.status = RunStatus::error;
     r.message = e.what();
   }
   r.timing.cycles = m.cycles();

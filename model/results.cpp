@@ -19,6 +19,27 @@ ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 ojson vec(const Vec2& v) { return ojson::array({num(v.x()), num(v.y())}); }
 }  // namespace
 
+const char* status_name(RunStatus s) {
+  switch (s) {
+    case RunStatus::running: return "running";
+    case RunStatus::collapse: return "collapse";
+    case RunStatus::max_steps: return "max_steps";
+    case RunStatus::undecided: return "undecided";
+    case RunStatus::error: return "error";
+  }
+  return "?";
+}
+
+std::optional<RunStatus> parse_status(const std::string& name) {
+  for (RunStatus s : {RunStatus::running, RunStatus::collapse, RunStatus::max_steps, RunStatus::undecided, RunStatus::error})
+    if (name == status_name(s)) return s;
+  return std::nullopt;
+}
+
+bool located(RunStatus s) { return s == RunStatus::collapse || s == RunStatus::max_steps; }
+
+std::ostream& operator<<(std::ostream& o, RunStatus s) { return o << status_name(s); }
+
 ojson to_json(const RunResult& r, const Case& c) {
   ojson j;
   j["format"] = "masonry-results/1";
@@ -28,7 +49,7 @@ ojson to_json(const RunResult& r, const Case& c) {
   j["capacity"] = num(r.capacity);
   j["stable_steps"] = r.stable_steps;
   j["collapsed"] = r.collapsed;
-  j["stopped"] = r.stopped;
+  j["stopped"] = status_name(r.status);
   if (!r.message.empty()) j["message"] = r.message;
   j["total_weight"] = num(r.total_weight);
   j["settings"] = r.settings;

@@ -2,6 +2,7 @@
 // Solvers fill these structs; only the writers below touch files.
 #pragma once
 
+#include <iosfwd>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -88,13 +89,31 @@ struct Timing {
   long long cycles = 0;  // DEM: integration cycles
 };
 
+// How a run ended; results.json writes its name as "stopped".
+enum class RunStatus {
+  running,    // the results handed out while the run goes on (a run stopped from outside stays so)
+  collapse,   // the structure collapsed: the capacity is the last equilibrium before it
+  max_steps,  // the loading path ended with the structure standing: the capacity is its end
+  // DEM: a hold neither settled nor ran away within its cap; the capacity is the last
+  // equilibrium, not a located collapse
+  undecided,
+  error,  // the run failed; `message` says why
+};
+const char* status_name(RunStatus s);
+// The status named `name`, or nothing for a name that is none of them.
+std::optional<RunStatus> parse_status(const std::string& name);
+// Whether a run that ended so located its capacity (a collapse, or the end of the path): only
+// such capacities are compared, drawn and timed as answers.
+bool located(RunStatus s);
+std::ostream& operator<<(std::ostream& o, RunStatus s);  // its name (test messages, logs)
+
 struct RunResult {
   std::string method;           // "prd" or "dem"
   std::string case_name;
   double capacity = 0.0;        // m, the last stable d
   int stable_steps = 0;
   bool collapsed = false;
-  std::string stopped = "running";  // "collapse", "max_steps", "error" (or "running" while going)
+  RunStatus status = RunStatus::running;
   std::string message;
   double total_weight = 0.0;    // N, masonry::total_weight(case): what the supports carry vertically
   std::vector<JointInfo> joints;

@@ -109,7 +109,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                        progress(x);
                      });
                      w(r, true);
-                     std::cerr << "prd: " << printable(c.name) << ": " << r.stopped << (r.message.empty() ? "" : " (" + r.message + ")")
+                     std::cerr << "prd: " << printable(c.name) << ": " << status_name(r.status) << (r.message.empty() ? "" : " (" + r.message + ")")
                                << ", capacity " << r.capacity << " m after " << r.stable_steps << " steps, "
                                << r.timing.total_s << " s (" << r.timing.lp_solves << " LPs); results in " << *dir << "\n";
                      if (r.sliding && r.sliding->any) {
@@ -132,7 +132,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                            std::cerr << "at no step\n";
                        }
                      }
-                     return r.stopped == "error" ? 1 : 0;
+                     return r.status == RunStatus::error ? 1 : 0;
                    }});
   }
   {

@@ -162,7 +162,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
       update_lp(m, h, h, h_open);
       const LpStatus st = m.ncols == 0 ? LpStatus::optimal : solve(m);
       if (st == LpStatus::infeasible) {
-        r.stopped = "error";
+        r.status = RunStatus::error;
         r.message = "d = " + std::to_string(cur.d) +
                     " m: the LP is infeasible: the prescribed motion cannot be accommodated without penetration";
         break;
@@ -217,7 +217,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
       }
       if (st == LpStatus::unbounded) {
         r.collapsed = true;
-        r.stopped = "collapse";
+        r.status = RunStatus::collapse;
         r.extra["events"].push_back(event_json(m, "collapse", cur.d, h_in, {}));
         r.extra["collapse"] = collapse_mechanism(m, h);
         r.extra["collapse"]["d"] = cur.d;
@@ -248,7 +248,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
         seen = std::numeric_limits<double>::infinity();
       }
       if (s.adaptive ? d_end - cur.d <= 1e-9 * h_ref : cur.index == s.max_steps) {
-        r.stopped = "max_steps";
+        r.status = RunStatus::max_steps;
         break;
       }
       emit();
@@ -339,7 +339,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
       rec = configuration_record(m, cur.index, cur.d);
     }
   } catch (const std::exception& e) {
-    r.stopped = "error";
+    r.status = RunStatus::error;
     r.message = e.what();
   }
   if (s.sliding_check) {

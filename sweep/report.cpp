@@ -164,8 +164,8 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
       for (const char* x : {"-", "not run", "-", "-", "-", ""}) r.push_back(x);
     } else {
       const auto d = run.method == "dem" ? diff_prd(*row, row_at(t, run.prd)) : std::nullopt;
-      r.push_back(row->stopped == "error" ? "-" : fmt::g(row->capacity, 6));
-      r.push_back(row->stopped);
+      r.push_back(row->status == RunStatus::error ? "-" : fmt::g(row->capacity, 6));
+      r.push_back(status_name(row->status));
       r.push_back(d ? pct(*d) : "-");
       r.push_back(row->required_friction_angle ? fmt::g(*row->required_friction_angle, 4) : "-");
       r.push_back(secs(row->time_s));
@@ -203,8 +203,8 @@ ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s)
                     {"id", run.id},
                     {"method", run.method},
                     {"parameters", params},
-                    {"stopped", row->stopped},
-                    {"capacity", row->stopped == "error" ? ojson(nullptr) : num(row->capacity)},
+                    {"stopped", status_name(row->status)},
+                    {"capacity", row->status == RunStatus::error ? ojson(nullptr) : num(row->capacity)},
                     {"time_s", num(row->time_s)},
                     {"prd_run", run.prd >= 0 ? ojson(run.prd) : ojson(nullptr)},
                     {"diff_prd", d ? num(*d) : ojson(nullptr)},
@@ -302,7 +302,7 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
     o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"2\" points=\"" << pts << "\"/>\n<g fill=\"" << col << "\">\n";
     for (int i : c.runs)
       o << "<circle cx=\"" << f1(X(x_of(p, s, i))) << "\" cy=\"" << f1(Y(t[i]->capacity)) << "\" r=\"3.5\"><title>run " << i << ": "
-        << xml_escape(run_label(p, p.runs[i])) << ": " << fmt::g(t[i]->capacity, 6) << " m, " << xml_escape(t[i]->stopped) << "</title></circle>\n";
+        << xml_escape(run_label(p, p.runs[i])) << ": " << fmt::g(t[i]->capacity, 6) << " m, " << status_name(t[i]->status) << "</title></circle>\n";
     o << "</g>\n";
   }
   // Legend on the right: the curves, then the line styles.

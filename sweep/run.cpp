@@ -32,16 +32,16 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run) {
     row.capacity = r.capacity;
     row.time_s = r.timing.total_s;
     row.message = r.message;
-    row.stopped = r.stopped;
-    if (r.stopped != "collapse" && r.stopped != "max_steps" && r.stopped != "undecided") {
-      row.stopped = "error";
-      if (row.message.empty()) row.message = "the run ended as '" + r.stopped + "'";
+    row.status = r.status;
+    if (r.status == RunStatus::running || r.status == RunStatus::error) {
+      row.status = RunStatus::error;
+      if (row.message.empty()) row.message = std::string("the run ended as '") + status_name(r.status) + "'";
     }
     // The PRD's sliding check (prd/): the friction angle below which its run would slide.
     if (r.sliding && r.sliding->any && std::isfinite(r.sliding->required_friction_angle))
       row.required_friction_angle = r.sliding->required_friction_angle;
   } catch (const std::exception& e) {
-    row.stopped = "error";
+    row.status = RunStatus::error;
     row.message = e.what();
     row.capacity = 0;
     row.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -92,12 +92,12 @@ void Recorder::operator()(const SweepRow& r) {
   if (o_.quiet) return;
   const SweepRun& run = pr_.plan.runs[r.index];
   const std::string label = run_label(pr_.plan, run);
-  if (r.stopped == "error")
+  if (r.status == RunStatus::error)
     std::fprintf(stderr, "sweep: [%zu/%zu] run %d %s (%s): error: %s\n", done_, pr_.todo.size(), r.index, r.method.c_str(), label.c_str(),
                  r.message.c_str());
   else
     std::fprintf(stderr, "sweep: [%zu/%zu] run %d %s (%s): %s, capacity %.6g m, %.3g s\n", done_, pr_.todo.size(), r.index,
-                 r.method.c_str(), label.c_str(), r.stopped.c_str(), r.capacity, r.time_s);
+                 r.method.c_str(), label.c_str(), status_name(r.status), r.capacity, r.time_s);
 }
 
 int Recorder::finish() {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "case.hpp"
+#include "results.hpp"
 
 namespace masonry {
 
@@ -88,9 +89,9 @@ struct SweepRow {
   int index = -1;
   std::string id;
   std::string method;
-  // "collapse", "max_steps", "undecided" (a DEM hold that neither settled nor ran away: the
-  // capacity is the last equilibrium, not a located collapse) or "error".
-  std::string stopped;
+  // collapse, max_steps, undecided (a DEM hold that neither settled nor ran away: the capacity
+  // is the last equilibrium, not a located collapse) or error; never running.
+  RunStatus status = RunStatus::error;
   double capacity = 0;  // m, the last stable d; not shown for an error
   double time_s = 0;    // run time without I/O
   std::string message;  // one line

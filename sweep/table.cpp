@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <stdexcept>
 
 #include "sweep.hpp"
 
@@ -73,7 +74,7 @@ const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.
 }  // namespace
 
 json row_to_json(const SweepRow& r) {
-  json j = {{"run", r.index}, {"id", r.id}, {"method", r.method}, {"stopped", r.stopped},
+  json j = {{"run", r.index}, {"id", r.id}, {"method", r.method}, {"stopped", status_name(r.status)},
             {"capacity", r.capacity}, {"time_s", r.time_s}, {"message", r.message}};
   if (r.required_friction_angle) j["required_friction_angle"] = *r.required_friction_angle;
   return j;
@@ -84,7 +85,10 @@ SweepRow row_from_json(const json& j) {
   r.index = j.at("run").get<int>();
   r.id = j.at("id").get<std::string>();
   r.method = j.at("method").get<std::string>();
-  r.stopped = j.at("stopped").get<std::string>();
+  const std::string status = j.at("stopped").get<std::string>();
+  const std::optional<RunStatus> st = parse_status(status);
+  if (!st || *st == RunStatus::running) throw std::runtime_error("sweep row: unknown \"stopped\" '" + status + "'");
+  r.status = *st;
   r.capacity = j.at("capacity").get<double>();
   r.time_s = j.at("time_s").get<double>();
   r.message = j.at("message").get<std::string>();
@@ -92,7 +96,7 @@ SweepRow row_from_json(const json& j) {
   return r;
 }
 
-bool located(const SweepRow& r) { return r.stopped == "collapse" || r.stopped == "max_steps"; }
+bool located(const SweepRow& r) { return located(r.status); }
 
 std::optional<double> diff_prd(const SweepRow& dem, const SweepRow* prd) {
   if (!prd || !located(dem) || !located(*prd) || prd->capacity == 0) return std::nullopt;
@@ -113,8 +117,8 @@ std::string sweep_csv_line(const SweepPlan& p, const SweepRow& r, const SweepTab
   std::vector<std::string> cells = {std::to_string(r.index), r.id, r.method};
   for (const json& v : run.values) cells.push_back(v.is_null() ? std::string() : value_text(v));
   const std::optional<double> diff = r.method == "dem" ? diff_prd(r, row_at(t, run.prd)) : std::nullopt;
-  cells.push_back(r.stopped == "error" ? std::string() : num(r.capacity));
-  cells.push_back(r.stopped);
+  cells.push_back(r.status == RunStatus::error ? std::string() : num(r.capacity));
+  cells.push_back(status_name(r.status));
   cells.push_back(num(r.time_s));
   cells.push_back(diff ? num(*diff) : std::string());
   cells.push_back(r.required_friction_angle ? num(*r.required_friction_angle) : std::string());
@@ -162,11 +166,12 @@ SweepTable read_sweep_csv(const SweepPlan& p, const std::string& text, const std
     r.index = run.index;
     r.id = run.id;
     r.method = run.method;
-    r.stopped = f[3 + nk + 1];
+    const std::optional<RunStatus> status = parse_status(f[3 + nk + 1]);
+    ok = ok && status && *status != RunStatus::running;
+    if (status) r.status = *status;
     r.message = f[3 + nk + 5];
-    ok = ok && (r.stopped == "collapse" || r.stopped == "max_steps" || r.stopped == "undecided" || r.stopped == "error");
     ok = ok && parse_number(f[3 + nk + 2], r.time_s);
-    if (r.stopped != "error") ok = ok && parse_number(f[3 + nk], r.capacity);
+    if (r.status != RunStatus::error) ok = ok && parse_number(f[3 + nk], r.capacity);
     double angle = 0;
     if (!f[3 + nk + 4].empty()) {
       ok = ok && parse_number(f[3 + nk + 4], angle);

@@ -150,7 +150,7 @@ int run_tradeoff_command(const TradeoffOpts& o) {
   for (const std::string& s : summary_lines(t)) std::cerr << "tradeoff: " << s << "\n";
   std::cerr << "tradeoff: report in " << o.out_dir << "/report.html and " << o.out_dir << "/report.md\n";
   bool ref_failed = false;
-  for (const Row& r : t.rows) ref_failed = ref_failed || (r.reference && !r.ok);
+  for (const Row& r : t.rows) ref_failed = ref_failed || (r.reference && !r.ok());
   if (ref_failed) std::cerr << "tradeoff: a reference run did not finish: its method's errors are n/a\n";
   return ref_failed ? 1 : 0;
 }

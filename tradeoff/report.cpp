@@ -139,7 +139,7 @@ Table method_table(const Tradeoff& t, const std::string& method) {
     if (r.reused) setting += r.given ? " (read back)" : " (reused)";
     std::string opts = r.given ? r.source : options_text(r.options);
     if (opts.empty()) opts = "(the case's own)";
-    std::string stopped = r.stopped + (r.message.empty() ? "" : ": " + r.message);
+    std::string stopped = status_name(r.status) + std::string(r.message.empty() ? "" : ": " + r.message);
     std::string time = secs(r.time_s) + (r.cpu ? "" : " (wall)");
     if (r.repeats > 1) time += " (" + secs(r.time_min_s) + "-" + secs(r.time_max_s) + ", " + std::to_string(r.repeats) + " runs)";
     std::string front;
@@ -217,7 +217,7 @@ std::string csv_row(const Row& r) {
   std::string opts;
   for (const CaseOption& o : r.options) opts += (opts.empty() ? "" : ";") + o.key + "=" + value_text(o.value);
   std::ostringstream o;
-  o << r.method << "," << q(r.label) << "," << q(r.parameter) << "," << role(r) << "," << q(opts) << "," << r.stopped << ","
+  o << r.method << "," << q(r.label) << "," << q(r.parameter) << "," << role(r) << "," << q(opts) << "," << status_name(r.status) << ","
     << g(r.capacity) << "," << g(r.capacity_err) << "," << g(r.thrust_max_err) << "," << g(r.thrust_rms_err) << "," << g(r.thrust_range) << "," << g(r.time_s)
     << "," << g(r.time_min_s) << "," << g(r.time_max_s) << "," << (r.cpu ? "cpu" : "wall") << "," << g(r.wall_s) << "," << r.repeats << "," << r.lp_solves << "," << r.cycles << ","
     << (r.reused ? "yes" : "no") << "," << q(r.source) << "," << q(r.message) << "\n";
@@ -264,7 +264,7 @@ std::vector<std::string> summary_lines(const Tradeoff& t) {
     // The fastest finished setting within both targets.
     const Row* best = nullptr;
     for (const Row& r : rows)
-      if (r.ok && std::isfinite(r.time_s) && std::abs(r.capacity_err) <= t.target_capacity && r.thrust_max_err <= t.target_thrust &&
+      if (r.ok() && std::isfinite(r.time_s) && std::abs(r.capacity_err) <= t.target_capacity && r.thrust_max_err <= t.target_thrust &&
           (!best || r.time_s < best->time_s))
         best = &r;
     const std::string target = pct(t.target_capacity) + " in capacity and " + weight(t.target_thrust) + " in thrust";
@@ -278,7 +278,7 @@ std::vector<std::string> summary_lines(const Tradeoff& t) {
       out.push_back(M + ": no setting is within " + target + " of the reference.");
     }
     int failed = 0;
-    for (const Row& r : rows) failed += r.ok ? 0 : 1;
+    for (const Row& r : rows) failed += r.ok() ? 0 : 1;
     if (failed) out.push_back(M + ": " + std::to_string(failed) + " setting" + (failed == 1 ? "" : "s") + " did not finish (see the table).");
   }
   return out;
@@ -304,7 +304,7 @@ ojson tradeoff_json(const Tradeoff& t) {
     x["id"] = r.id;
     x["options"] = ojson::object();
     for (const CaseOption& o : r.options) x["options"][o.key] = to_ordered(o.value);
-    x["stopped"] = r.stopped;
+    x["stopped"] = status_name(r.status);
     if (!r.message.empty()) x["message"] = r.message;
     x["capacity"] = num(r.capacity);
     x["capacity_err"] = num(r.capacity_err);
@@ -360,7 +360,7 @@ std::string svg_pareto(const Tradeoff& t, const std::string& method) {
   // Time axis, shared by both panels: whole decades around the finished runs.
   double tlo = std::numeric_limits<double>::infinity(), thi = -tlo;
   for (const Row& r : rows)
-    if (r.ok && std::isfinite(r.time_s) && r.time_s > 0) tlo = std::min(tlo, r.time_s), thi = std::max(thi, r.time_s);
+    if (r.ok() && std::isfinite(r.time_s) && r.time_s > 0) tlo = std::min(tlo, r.time_s), thi = std::max(thi, r.time_s);
   if (!(tlo <= thi)) tlo = thi = 1;
   double d0 = std::floor(std::log10(tlo)), d1 = std::ceil(std::log10(thi));
   if (d1 <= d0) d1 = d0 + 1;

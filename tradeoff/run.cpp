@@ -25,8 +25,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // "max_steps" run must also have reached the end of the path (DEM results written before
 // 2026-11-22 said "max_steps" while going, and a run stopped from outside left them so).
 bool finished(const RunResult& r, const Case& c) {
-  if (r.stopped == "collapse" || r.stopped == "undecided" || r.stopped == "error") return true;
-  if (r.stopped != "max_steps" || r.steps.empty()) return false;
+  if (r.status == RunStatus::collapse || r.status == RunStatus::undecided || r.status == RunStatus::error) return true;
+  if (r.status != RunStatus::max_steps || r.steps.empty()) return false;
   const double end = c.motion.step * c.motion.max_steps;
   return r.steps.back().d >= end * (1 - 1e-9);
 }
@@ -54,7 +54,7 @@ RunResult run_once(const PlannedRun& p, const std::string& dir, double& io_cpu_s
     RunResult r;
     r.method = p.setting.method;
     r.case_name = p.c.name;
-    r.stopped = "error";
+    r.status = RunStatus::error;
     r.message = e.what();
     return r;
   }
@@ -80,9 +80,8 @@ nlohmann::ordered_json times_json(const Times& t) {
 }
 
 void fill(Row& row, const RunResult& r, const Times& t) {
-  row.stopped = r.stopped;
+  row.status = r.status;
   row.message = r.message;
-  row.ok = r.stopped == "collapse" || r.stopped == "max_steps";
   row.cpu = !t.cpu.empty();
   const std::vector<double>& times = row.cpu ? t.cpu : t.wall;
   row.wall_s = median(t.wall);
@@ -93,12 +92,12 @@ void fill(Row& row, const RunResult& r, const Times& t) {
   row.lp_solves = r.timing.lp_solves;
   row.cycles = r.timing.cycles;
   row.steps = int(r.steps.size());
-  row.capacity = row.ok ? r.capacity : kNaN;
+  row.capacity = row.ok() ? r.capacity : kNaN;
 }
 
 void set_errors(Row& row, const Case& c, const RunResult* ref, bool ref_ok, const RunResult& r) {
   row.capacity_err = row.thrust_max_err = row.thrust_rms_err = row.thrust_range = kNaN;
-  if (!ref || !ref_ok || !row.ok) return;
+  if (!ref || !ref_ok || !row.ok()) return;
   const Comparison k = compare_runs(c, *ref, r);
   row.capacity_err = k.capacity_rel_diff;
   row.thrust_max_err = k.thrust_max_diff;
@@ -181,7 +180,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
           r = run_once(p, dir, io);
           times.cpu.push_back(thread_cpu_s() - c0 - io);
           times.wall.push_back(r.timing.total_s);
-          if (r.stopped == "error") break;  // a failure is not timed again
+          if (r.status == RunStatus::error) break;  // a failure is not timed again
         }
         if (!dir.empty()) {
           write_results(dir, r, p.c);
@@ -193,11 +192,11 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
     fill(row, r, times);
     if (p.reference) {
       refs[row.method] = r;
-      ref_ok[row.method] = row.ok;
+      ref_ok[row.method] = row.ok();
     }
     const auto ref = refs.find(row.method);
     set_errors(row, base, ref == refs.end() ? nullptr : &ref->second, ref_ok[row.method], r);
-    say("tradeoff: " + row.method + " " + row.label + ": " + row.stopped + (row.message.empty() ? "" : " (" + row.message + ")") +
+    say("tradeoff: " + row.method + " " + row.label + ": " + status_name(row.status) + std::string(row.message.empty() ? "" : " (" + row.message + ")") +
         ", capacity " + (std::isfinite(row.capacity) ? std::to_string(row.capacity) : "n/a") + " m, " + std::to_string(row.time_s) + " s");
     rows.push_back(row);
     if (on_row) on_row(rows.back());
@@ -246,7 +245,7 @@ std::vector<ParetoPoint> points_of(const std::vector<Row>& rows, ErrorKind kind)
   std::vector<ParetoPoint> p;
   for (const Row& r : rows) {
     const double e = kind == ErrorKind::capacity ? std::abs(r.capacity_err) : r.thrust_max_err;
-    p.push_back({r.ok ? r.time_s : kNaN, r.ok ? e : kNaN});
+    p.push_back({r.ok() ? r.time_s : kNaN, r.ok() ? e : kNaN});
   }
   return p;
 }

@@ -92,8 +92,8 @@ struct Row {
   std::string source;     // where the run is (its directory), or the reused run's directory
   bool reused = false;    // read back (--reference-*, --resume) instead of run here
   bool given = false;     // the reference is a finished run given with --reference-* (options unknown)
-  bool ok = false;        // finished: stopped by collapse or max_steps
-  std::string stopped;    // "collapse", "max_steps", "error"
+  RunStatus status = RunStatus::running;
+  bool ok() const { return located(status); }  // its capacity is an answer: a collapse or max_steps
   std::string message;    // why a run failed
   int repeats = 0;
   // The time of a setting: the median over the repeats of the CPU time of the solver call,

@@ -29,7 +29,7 @@ const RunResult& run_method(const Case& c, Method m, RunCache& cache) {
 }
 
 std::string run_failure(const RunResult& r) {
-  return "the " + std::string(r.method) + " run stopped: " + r.stopped + (r.message.empty() ? "" : " (" + r.message + ")");
+  return "the " + std::string(r.method) + " run stopped: " + status_name(r.status) + (r.message.empty() ? "" : " (" + r.message + ")");
 }
 
 // Whether the structure stands as it is: PRD's one analysis, or the DEM settling under gravity
@@ -38,8 +38,8 @@ Measured stands(Case c, Method m) {
   if (m == Method::prd) return {true, prd_check(c, c.prd.contact_tolerance).stable ? 1.0 : 0.0, ""};
   c.motion.max_steps = 0;
   const RunResult r = dem_run(c, DemSettings::from_case(c));
-  if (r.stopped == "max_steps") return {true, 1.0, ""};
-  if (r.stopped == "collapse") return {true, 0.0, ""};
+  if (r.status == RunStatus::max_steps) return {true, 1.0, ""};
+  if (r.status == RunStatus::collapse) return {true, 0.0, ""};
   return fail(run_failure(r));
 }
 
@@ -79,11 +79,11 @@ Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& c
   if (b.quantity == Quantity::stands) return stands(c, m);
   if (b.quantity == Quantity::least_friction_angle) c.prd.sliding_check = true;
   const RunResult& r = run_method(c, m, cache);
-  if (r.stopped == "error" || r.stopped == "undecided") return fail(run_failure(r));
+  if (r.status == RunStatus::error || r.status == RunStatus::undecided) return fail(run_failure(r));
   switch (b.quantity) {
     case Quantity::capacity:
-      if (r.stopped != "collapse")
-        return fail("no collapse up to d = " + std::to_string(r.capacity) + " m (stopped: " + r.stopped + ")");
+      if (r.status != RunStatus::collapse)
+        return fail("no collapse up to d = " + std::to_string(r.capacity) + " m (stopped: " + status_name(r.status) + ")");
       return {true, r.capacity, ""};
     case Quantity::least_friction_angle: {
       if (!r.sliding || !r.sliding->any) return fail("the sliding check reported nothing");

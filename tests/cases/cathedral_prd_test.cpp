@@ -22,7 +22,7 @@ TEST(CathedralPrd, FiniteCapacityUnderSettlement) {
   // on a collapse before it.
   s.max_steps = 300;
   const RunResult r = prd_run(c, s);
-  EXPECT_TRUE(r.collapsed) << r.stopped << ": " << r.message;
+  EXPECT_TRUE(r.collapsed) << r.status << ": " << r.message;
   EXPECT_GT(r.capacity, 0.0);
   EXPECT_LT(r.capacity, s.max_steps * s.step);
 }

@@ -73,12 +73,12 @@ TEST(CasesImport, TheDrawnTiltingBlockTopplesAsTheCaseFileDoes) {
   EXPECT_NEAR(std::abs(signed_area(c.blocks[1].vertices)), 0.2 * 0.4, 1e-12);  // mm -> m
   const Case ref = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json");
   const RunResult p = prd_run(c, PrdSettings::from_case(c)), pr = prd_run(ref, PrdSettings::from_case(ref));
-  EXPECT_EQ(p.stopped, "collapse");
+  EXPECT_EQ(p.status, RunStatus::collapse);
   EXPECT_NEAR(p.capacity, pr.capacity, 1e-12);
   EXPECT_LE(p.capacity, std::atan(0.5));  // toppling at atan(b/h), within one step
   EXPECT_GT(p.capacity, std::atan(0.5) - c.motion.step);
   const RunResult d = dem_run(c, DemSettings::from_case(c)), dr = dem_run(ref, DemSettings::from_case(ref));
-  EXPECT_EQ(d.stopped, "collapse") << d.message;
+  EXPECT_EQ(d.status, RunStatus::collapse) << d.message;
   EXPECT_NEAR(d.capacity, dr.capacity, 0.01 * c.motion.step);
 }
 
@@ -97,7 +97,7 @@ TEST(CasesImport, ThePointedArchDrawingIsTheStandardScene) {
     for (size_t k = 0; k < c.blocks[b].vertices.size(); ++k) EXPECT_NEAR((c.blocks[b].vertices[k] - ref.blocks[b].vertices[k]).norm(), 0, 1e-12);
   }
   const RunResult p = prd_run(c, PrdSettings::from_case(c)), pr = prd_run(ref, PrdSettings::from_case(ref));
-  EXPECT_EQ(p.stopped, "collapse");
+  EXPECT_EQ(p.status, RunStatus::collapse);
   EXPECT_NEAR(p.capacity, pr.capacity, 1e-12);
   EXPECT_NEAR(p.capacity, 0.278, 0.002);  // the paper's PRD
 }

@@ -136,6 +136,7 @@ TEST(Compare, ResultsJsonReadsBackToTheSameRun) {
   const std::string text = to_json(r, arch()).dump(1);
   const RunResult back = parse_results(text, arch(), "results.json");
   EXPECT_EQ(back.method, "prd");
+  EXPECT_EQ(back.status, r.status);
   EXPECT_EQ(back.steps.size(), r.steps.size());
   EXPECT_EQ(back.joints.size(), r.joints.size());
   const Comparison k = compare_runs(arch(), r, back);
@@ -149,6 +150,26 @@ TEST(Compare, ResultsOfAnotherCaseAreRefused) {
   other.blocks[3].id = "not-v2";
   EXPECT_THROW(parse_results(to_json(arch_prd(), arch()).dump(), other, "results.json"), std::runtime_error);
   EXPECT_THROW(parse_results("{", arch(), "results.json"), std::runtime_error);
+}
+
+// Every status a run can end with is written by its name and read back as itself; a name that
+// is none of them is refused with the field named, not read as some default.
+TEST(Compare, RunStatusReadsBackAndAnUnknownOneIsRefused) {
+  for (RunStatus s : {RunStatus::running, RunStatus::collapse, RunStatus::max_steps, RunStatus::undecided, RunStatus::error}) {
+    RunResult r = arch_prd();
+    r.status = s;
+    EXPECT_EQ(parse_results(to_json(r, arch()).dump(), arch(), "results.json").status, s) << s;
+  }
+  EXPECT_TRUE(located(RunStatus::collapse) && located(RunStatus::max_steps));
+  EXPECT_FALSE(located(RunStatus::undecided) || located(RunStatus::error) || located(RunStatus::running));
+  auto j = to_json(arch_prd(), arch());
+  j["stopped"] = "finished";
+  try {
+    parse_results(j.dump(), arch(), "results.json");
+    ADD_FAILURE() << "an unknown status was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("stopped"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Compare, MissingNumbersAreNullNotNaN) {

@@ -54,17 +54,17 @@ TEST(DemArch, CapacityAndHingesMatchPrd) {
   const Case c = test::semicircular_arch_case();
   const DemSettings s = DemSettings::from_case(c);
   const RunResult dem = dem_run(c, s);
-  std::printf("DEM: %s capacity %.4f m, %d stable steps, %lld cycles, %.2f s, dt %.3g s\n", dem.stopped.c_str(),
+  std::printf("DEM: %s capacity %.4f m, %d stable steps, %lld cycles, %.2f s, dt %.3g s\n", status_name(dem.status),
               dem.capacity, dem.stable_steps, dem.timing.cycles, dem.timing.total_s, dem.settings.value("dt", 0.0));
-  ASSERT_EQ(dem.stopped, "collapse") << dem.message;
+  ASSERT_EQ(dem.status, RunStatus::collapse) << dem.message;
   ASSERT_GT(dem.capacity, 0);
   const auto hd = hinges(dem);
   std::printf("DEM hinges at d = %.4f m: %s\n", dem.capacity, show(hd).c_str());
   EXPECT_EQ(hd.size(), 3u);
 
   const RunResult prd = prd_run(c, PrdSettings::from_case(c));
-  ASSERT_NE(prd.stopped, "error") << prd.message;
-  std::printf("PRD: %s capacity %.4f m\n", prd.stopped.c_str(), prd.capacity);
+  ASSERT_NE(prd.status, RunStatus::error) << prd.message;
+  std::printf("PRD: %s capacity %.4f m\n", status_name(prd.status), prd.capacity);
   EXPECT_NEAR(dem.capacity, prd.capacity, 0.06 * prd.capacity);
   const auto hp = hinges(prd);
   std::printf("PRD hinges at d = %.4f m: %s\n", prd.capacity, show(hp).c_str());

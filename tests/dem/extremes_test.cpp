@@ -85,7 +85,7 @@ TEST(DemExtremes, StiffnessFrom1e6To1e13PaPerM) {
     c.dem.collapse_drift = 0.1;
     const RunResult r = dem_run(c, DemSettings::from_case(c));
     SCOPED_TRACE("kn " + std::to_string(kn));
-    EXPECT_EQ(r.stopped, "max_steps") << r.message;
+    EXPECT_EQ(r.status, RunStatus::max_steps) << r.message;
     expect_statics(c, r, 2e-3);
     // The overlap at 1e13 Pa/m is 1e-9 m, three orders above the resolution of the positions.
     expect_all_finite(to_json(r, c));
@@ -106,7 +106,7 @@ TEST(DemExtremes, FrictionFrom5To90Degrees) {
   for (const Row& row : {Row{0.4, 0.2, 5.5, 5.5, true}, Row{0.4, 0.2, 60.5, 60.5, true}, Row{0.4, 0.2, 90, topple, false}}) {
     SCOPED_TRACE("phi " + std::to_string(row.phi));
     const RunResult r = tilt(row.b, row.h, row.phi);
-    ASSERT_EQ(r.stopped, "collapse") << r.message;
+    ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
     const double cap = r.capacity / kDeg;
     // The equilibrium criterion admits an unbalanced force or moment of equilibrium_tolerance x W,
     // so a state a hair beyond the limit tilt may count as settled: by tol cos(phi) rad for
@@ -137,7 +137,7 @@ TEST(DemExtremes, MassRatio1e4BetweenNeighbours) {
       c.dem.hold_time = periods_of(c, 40);
       SCOPED_TRACE(std::string(heavy_on_top ? "heavy on light" : "light on heavy") + ", factor " + std::to_string(factor));
       const RunResult r = dem_run(c, DemSettings::from_case(c));
-      EXPECT_EQ(r.stopped, "max_steps") << r.message;
+      EXPECT_EQ(r.status, RunStatus::max_steps) << r.message;
       expect_statics(c, r, 2e-3);
       expect_all_finite(to_json(r, c));
     }
@@ -201,7 +201,7 @@ TEST(DemExtremes, BlowUpStopsTheRunInsteadOfBeingRecorded) {
     s.allow_unstable_timestep = true;
     const RunResult r = dem_run(c, s);
     SCOPED_TRACE("factor " + std::to_string(factor));
-    EXPECT_EQ(r.stopped, "error");
+    EXPECT_EQ(r.status, RunStatus::error);
     EXPECT_TRUE(r.message.find("blew up") != std::string::npos || r.message.find("non-finite") != std::string::npos)
         << r.message;
     EXPECT_EQ(r.message.find('\n'), std::string::npos) << r.message;
@@ -245,12 +245,12 @@ TEST(DemExtremes, EveryCornerEndsInAResultOrARefusal) {
           const double floor = kn * kJointArea * std::nextafter(0.4, 1.0) - kn * kJointArea * 0.4;
           const double w_light = block_mass(c.blocks[heavy_on_top ? 1 : 2]) * c.gravity;
           if (floor / w_light > 0.5 * c.dem.equilibrium_tolerance) {
-            EXPECT_EQ(r.stopped, "undecided");
+            EXPECT_EQ(r.status, RunStatus::undecided);
             EXPECT_NE(r.message.find("neither settled nor ran away"), std::string::npos) << r.message;
             EXPECT_EQ(r.stable_steps, 0);
             continue;
           }
-          EXPECT_EQ(r.stopped, "max_steps") << r.message;
+          EXPECT_EQ(r.status, RunStatus::max_steps) << r.message;
           // The load adds its own (small) closure gradient across the joint, not its mean: the
           // centroid drops check stays within the same tolerance.
           expect_statics(c, r, 5e-3);

@@ -156,8 +156,8 @@ TEST(DemGeometry, StraightAngleVerticesChangeNothing) {
   validate_geometry(marked);
   EXPECT_EQ(dem::convex_pieces(marked.blocks[1].vertices).front().size(), 4u);
   const RunResult r0 = test::tilt_run(plain), r1 = test::tilt_run(marked);
-  ASSERT_EQ(r0.stopped, "collapse") << r0.message;
-  ASSERT_EQ(r1.stopped, "collapse") << r1.message;
+  ASSERT_EQ(r0.status, RunStatus::collapse) << r0.message;
+  ASSERT_EQ(r1.status, RunStatus::collapse) << r1.message;
   EXPECT_NEAR(r1.capacity, std::atan(b / h), 2e-3);
   EXPECT_NEAR(r1.capacity, r0.capacity, 0.01 * plain.motion.step);
 }

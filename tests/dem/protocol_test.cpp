@@ -91,7 +91,7 @@ TEST(DemHold, UndecidedInitialStateIsNoCapacity) {
   c.dem.damping = 0.9999;
   c.dem.hold_time = 0.2;
   const RunResult r = dem_run(c, DemSettings::from_case(c));
-  EXPECT_EQ(r.stopped, "undecided");
+  EXPECT_EQ(r.status, RunStatus::undecided);
   EXPECT_EQ(r.stable_steps, 0);
   EXPECT_NE(r.message.find("neither settled nor ran away"), std::string::npos) << r.message;
 }
@@ -119,7 +119,7 @@ TEST(DemBracket, CapacityDoesNotMoveWithTheIncrement) {
     c.motion.step = step_deg * kDeg;
     c.motion.max_steps = static_cast<int>(40 / step_deg);
     const RunResult r = test::tilt_run(c);
-    ASSERT_EQ(r.stopped, "collapse") << r.message;
+    ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
     std::printf("step %g deg: capacity %.4f deg, bracket %s\n", step_deg, r.capacity / kDeg, r.extra["collapse_bracket"].dump().c_str());
     const double width = r.extra["collapse_bracket"]["width"].get<double>();
     EXPECT_LE(width, c.dem.bracket_fraction * c.motion.step * (1 + 1e-9));
@@ -153,7 +153,7 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
   s.collapse_drift = 0.02;
   s.confirm_collapse = true;
   const RunResult r = dem_run(c, s);
-  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
   ASSERT_TRUE(r.extra.contains("unconfirmed_failures"));
   const auto& u = r.extra["unconfirmed_failures"];
   ASSERT_FALSE(u.empty());
@@ -182,7 +182,7 @@ TEST(DemBracket, ACollapseDuringAMoveIsACollapse) {
   c.dem.kinetic_ratio = 2.5e-4;
   c.motion.max_steps = 40;
   const RunResult r = test::tilt_run(c);
-  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
   // The soft joints of the test scenes let the toe's elastic overlap tip the block early, by
   // overlap / b: 0.07 degrees here (DemBracket.CapacityDoesNotMoveWithTheIncrement).
   EXPECT_LE(r.capacity, topple + 2 * resolution);
@@ -233,7 +233,7 @@ TEST(DemHinges, SettledGapsAreNotHinges) {
   c.motion.step = 0.001;
   c.motion.max_steps = 2;
   const RunResult r = dem_run(c, DemSettings::from_case(c));
-  ASSERT_EQ(r.stopped, "max_steps") << r.message;
+  ASSERT_EQ(r.status, RunStatus::max_steps) << r.message;
   ASSERT_EQ(r.steps.size(), 3u);
   // Settled: the top corner of the vertical joint stands open (and nothing else).
   ASSERT_EQ(r.steps[0].open_corners.size(), 1u);
@@ -254,7 +254,7 @@ TEST(DemConvergence, SmallArchAgreesAcrossSettings) {
   study.case_name = c.name;
   study.prd_capacity = prd_run(c, PrdSettings::from_case(c)).capacity;
   for (size_t i = 0; i < variants.size(); ++i) {
-    std::printf("%-15s %-10s %.5f m, %.2f s\n", variants[i].name.c_str(), runs[i].stopped.c_str(), runs[i].capacity, runs[i].timing.total_s);
+    std::printf("%-15s %-10s %.5f m, %.2f s\n", variants[i].name.c_str(), status_name(runs[i].status), runs[i].capacity, runs[i].timing.total_s);
     study.entries.push_back({variants[i].name, variants[i].what, runs[i]});
   }
   const ConvergenceVerdict v = judge(study);

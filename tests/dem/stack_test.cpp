@@ -31,7 +31,7 @@ TEST(DemStack, ReactionsEqualWeightAndOverlapsMatchSprings) {
   const StepRecord& st = r.steps[0];
   ASSERT_TRUE(st.extra.value("settled", false)) << "unbalanced " << st.extra.value("unbalanced_ratio", -1.0);
   EXPECT_LT(st.extra.value("unbalanced_ratio", 1.0), s.equilibrium_tolerance);
-  EXPECT_EQ(r.stopped, "max_steps");
+  EXPECT_EQ(r.status, RunStatus::max_steps);
   EXPECT_EQ(r.capacity, 0.0);
 
   const double W = 2000 * 0.4 * 0.2 * 1.0 * c.gravity;  // one block

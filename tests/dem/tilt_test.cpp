@@ -19,7 +19,7 @@ constexpr double kDeg = M_PI / 180;
 TEST(DemTilt, SlidesAtTheFrictionAngle) {
   const double b = 0.4, h = 0.2, phi = 20.5;  // tan(phi) = 0.37 < b/h = 2
   const RunResult r = test::tilt_run(test::tilt_case(b, h, phi));
-  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
   const double cap = r.capacity / kDeg;
   EXPECT_LE(cap, phi);
   EXPECT_GT(cap, phi - 1.0);
@@ -32,7 +32,7 @@ TEST(DemTilt, SlidesAtTheFrictionAngle) {
 TEST(DemTilt, ToppleAtAtanBOverH) {
   const double b = 0.2, h = 0.4, phi = 45;  // tan(phi) = 1 > b/h = 0.5
   const RunResult r = test::tilt_run(test::tilt_case(b, h, phi));
-  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
   const double topple = std::atan(b / h) / kDeg;  // 26.57 degrees
   const double cap = r.capacity / kDeg;
   EXPECT_LE(cap, topple);
@@ -47,12 +47,12 @@ TEST(DemTilt, ToppleAtAtanBOverH) {
 TEST(DemTilt, ResultsSayRunningUntilTheRunEnds) {
   Case c = test::tilt_case(0.4, 0.2, 35);  // 2 degrees: far from sliding (35) and toppling (63)
   c.motion.max_steps = 2;
-  std::vector<std::string> seen;
-  const RunResult r = test::tilt_run(c, [&](const RunResult& partial) { seen.push_back(partial.stopped); });
-  EXPECT_EQ(r.stopped, "max_steps") << r.message;
+  std::vector<RunStatus> seen;
+  const RunResult r = test::tilt_run(c, [&](const RunResult& partial) { seen.push_back(partial.status); });
+  EXPECT_EQ(r.status, RunStatus::max_steps) << r.message;
   EXPECT_EQ(r.stable_steps, 2);
   ASSERT_EQ(seen.size(), 3u);  // the initial configuration and two increments
-  for (const std::string& st : seen) EXPECT_EQ(st, "running");
+  for (RunStatus st : seen) EXPECT_EQ(st, RunStatus::running);
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ TEST(PrdAdaptive, TipsWithinTheEventToleranceOfTheClosedForm) {
     "prd": {"adaptive": true, "event_tolerance": 1e-5, "max_step": 0.16}})";
   const Case c = parse_case(json, "tilting-block.json");
   const RunResult r = prd_run(c, PrdSettings::from_case(c));
-  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
   const double critical = std::atan(0.5);
   EXPECT_LE(r.capacity, critical + 1e-9);
   EXPECT_GT(r.capacity, critical - 1e-5);
@@ -58,8 +58,8 @@ void expect_agrees_with_quarter_step(const std::string& name) {
   const Case c = standard(name);
   const RunResult a = prd_run(c, adaptive(c));
   const RunResult q = prd_run(c, quarter_step(c));
-  ASSERT_EQ(a.stopped, "collapse") << a.message;
-  ASSERT_EQ(q.stopped, "collapse") << q.message;
+  ASSERT_EQ(a.status, RunStatus::collapse) << a.message;
+  ASSERT_EQ(q.status, RunStatus::collapse) << q.message;
   const double tol = event_tolerance(a);
   EXPECT_NEAR(a.capacity, q.capacity, tol) << name;
   for (const auto& e : a.extra["events"]) {
@@ -109,8 +109,8 @@ TEST(PrdAdaptive, HalvingTheLongestMoveKeepsTheCapacity) {
     const RunResult a = prd_run(c, s);
     s.max_step = a.settings["max_step"].get<double>() / 2;
     const RunResult b = prd_run(c, s);
-    ASSERT_EQ(a.stopped, "collapse") << a.message;
-    ASSERT_EQ(b.stopped, "collapse") << b.message;
+    ASSERT_EQ(a.status, RunStatus::collapse) << a.message;
+    ASSERT_EQ(b.status, RunStatus::collapse) << b.message;
     EXPECT_NEAR(a.capacity, b.capacity, event_tolerance(a)) << name;
     EXPECT_LT(a.timing.lp_solves, b.timing.lp_solves) << name;
   }

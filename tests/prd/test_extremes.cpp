@@ -26,10 +26,10 @@ RunResult arch(double scale, double step_over_size, double tol_over_size = 1e-5)
 
 TEST(PrdExtremes, StepsFromOneHundredThousandthToOneTwentiethOfTheScene) {
   const RunResult fine = arch(1.0, 1e-5);
-  ASSERT_EQ(fine.stopped, "collapse") << fine.message;
+  ASSERT_EQ(fine.status, RunStatus::collapse) << fine.message;
   for (double s : {1e-4, 1e-3, 1e-2, 5e-2}) {
     const RunResult r = arch(1.0, s);
-    EXPECT_EQ(r.stopped, "collapse") << s << ": " << r.message;
+    EXPECT_EQ(r.status, RunStatus::collapse) << s << ": " << r.message;
     // A coarser step can only stop earlier, by less than one of its steps.
     EXPECT_LE(r.capacity, fine.capacity + 1e-12) << s;
     EXPECT_GT(r.capacity, fine.capacity - 2 * s) << s;  // one step is 2 s (span 2)
@@ -43,7 +43,7 @@ TEST(PrdExtremes, SceneScaledByOneHundredthAndOneHundred) {
   const RunResult unit = arch(1.0, 1e-3);
   for (double scale : {0.01, 100.0}) {
     const RunResult r = arch(scale, 1e-3);
-    EXPECT_EQ(r.stopped, "collapse") << scale;
+    EXPECT_EQ(r.status, RunStatus::collapse) << scale;
     EXPECT_EQ(r.stable_steps, unit.stable_steps) << scale;
     EXPECT_NEAR(r.capacity / scale, unit.capacity, 1e-9) << scale;
   }
@@ -53,7 +53,7 @@ TEST(PrdExtremes, ToleranceOverFiveDecades) {
   const RunResult ref = arch(1.0, 5e-4);
   for (double tol : {1e-7, 1e-6, 1e-4, 1e-3}) {
     const RunResult r = arch(1.0, 5e-4, tol);
-    EXPECT_EQ(r.stopped, "collapse") << tol;
+    EXPECT_EQ(r.status, RunStatus::collapse) << tol;
     EXPECT_NEAR(r.capacity, ref.capacity, 0.02 * ref.capacity) << tol;
   }
 }
@@ -76,7 +76,7 @@ TEST(PrdExtremes, ArchesWithinOnePercentOfTheirMinimumThickness) {
   a.step = 1e-5;
   a.max_steps = 100000;
   const RunResult r = prd_run(circular_arch(a), PrdSettings::from_case(circular_arch(a)));
-  EXPECT_EQ(r.stopped, "collapse") << r.message;
+  EXPECT_EQ(r.status, RunStatus::collapse) << r.message;
   EXPECT_GT(r.capacity, 0.0);
   EXPECT_LT(r.capacity, 0.05);
 }
@@ -95,7 +95,7 @@ TEST(PrdExtremes, BlocksWithAspectRatioOfOneHundred) {
                   s.b, s.b, s.h, s.h, s.step);
     const Case c = parse_case(json, "slender.json");
     const RunResult r = prd_run(c, PrdSettings::from_case(c));
-    EXPECT_EQ(r.stopped, "collapse") << s.b << "x" << s.h;
+    EXPECT_EQ(r.status, RunStatus::collapse) << s.b << "x" << s.h;
     EXPECT_LE(r.capacity, std::atan(s.b / s.h)) << s.b << "x" << s.h;
     EXPECT_GT(r.capacity, std::atan(s.b / s.h) - s.step) << s.b << "x" << s.h;
   }
@@ -120,16 +120,16 @@ TEST(PrdExtremes, AdaptiveRunsScaleKeepTheirToleranceAndTip) {
     return prd_run(c, PrdSettings::from_case(c));
   };
   const RunResult unit = adaptive_arch(1.0, 1e-4);
-  ASSERT_EQ(unit.stopped, "collapse") << unit.message;
+  ASSERT_EQ(unit.status, RunStatus::collapse) << unit.message;
   for (double scale : {0.01, 100.0}) {
     const RunResult r = adaptive_arch(scale, 1e-4);
-    EXPECT_EQ(r.stopped, "collapse") << scale;
+    EXPECT_EQ(r.status, RunStatus::collapse) << scale;
     EXPECT_NEAR(r.capacity / scale, unit.capacity, 1e-6 * unit.capacity) << scale;
   }
   const RunResult fine = arch(1.0, 1e-5);
   for (double tol : {1e-5, 1e-4, 1e-3}) {
     const RunResult r = adaptive_arch(1.0, tol);
-    EXPECT_EQ(r.stopped, "collapse") << tol << ": " << r.message;
+    EXPECT_EQ(r.status, RunStatus::collapse) << tol << ": " << r.message;
     // Within the tolerance and the fine run's own step (2e-5).
     EXPECT_NEAR(r.capacity, fine.capacity, 2 * tol + 2e-5) << tol;
   }
@@ -139,7 +139,7 @@ TEST(PrdExtremes, AdaptiveRunsScaleKeepTheirToleranceAndTip) {
       "motion": {"step": 1e-3, "max_steps": 1000, "supports": [{"block": "g", "rotation": 1.0, "about": [-20, -1]}]},
       "prd": {"adaptive": true, "event_tolerance": 1e-6}})", "slender.json");
   const RunResult r = prd_run(c, PrdSettings::from_case(c));
-  EXPECT_EQ(r.stopped, "collapse") << r.message;
+  EXPECT_EQ(r.status, RunStatus::collapse) << r.message;
   EXPECT_LE(r.capacity, std::atan(0.01) + 1e-12);
   EXPECT_GT(r.capacity, std::atan(0.01) - 1e-6);
   EXPECT_LT(r.timing.lp_solves, 40);

@@ -178,8 +178,8 @@ RunResult spreading_arch(double step, double tol, double scale = 1.0, double den
 
 TEST(PrdSpreadingArch, ThreeHingesAtTheFirstStepAndFiniteCapacity) {
   RunResult r = spreading_arch(0.001, 1e-5);
-  ASSERT_TRUE(r.collapsed) << r.stopped << " " << r.message;
-  EXPECT_EQ(r.stopped, "collapse");
+  ASSERT_TRUE(r.collapsed) << r.status << " " << r.message;
+  EXPECT_EQ(r.status, RunStatus::collapse);
   ASSERT_GE(r.steps.size(), 2u);
   EXPECT_EQ(hinge_count(r.steps[1]), 3);
   EXPECT_EQ(r.steps[1].open_corners.size(), 3u);
@@ -254,7 +254,7 @@ TEST(PrdRun, MaxStepsStopsAStableRun) {
   s.max_steps = 10;
   RunResult r = prd_run(c, s);
   EXPECT_FALSE(r.collapsed);
-  EXPECT_EQ(r.stopped, "max_steps");
+  EXPECT_EQ(r.status, RunStatus::max_steps);
   EXPECT_EQ(r.stable_steps, 10);
   EXPECT_NEAR(r.capacity, 0.010, 1e-12);
   EXPECT_EQ(r.timing.lp_solves, 11);

@@ -77,7 +77,7 @@ TEST(PrdSliding, TiltingPlaneNeedsTheTiltUntilToppling) {
   const double b = 0.4, h = 0.8;
   const Case c = inclined(0.0, b, h, false, true);
   const RunResult r = prd_run(c, PrdSettings::from_case(c));
-  ASSERT_EQ(r.stopped, "collapse") << r.message;
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
   const double step_deg = 0.5, topple_deg = std::atan(b / h) * kDeg;
   for (const StepRecord& s : r.steps) {
     ASSERT_TRUE(s.sliding) << s.d;
@@ -101,7 +101,7 @@ TEST(PrdSliding, RequiredNeverExceedsTheDualsDemand) {
   PrdSettings s = PrdSettings::from_case(c);
   s.sliding_check = true;
   const RunResult r = prd_run(c, s);
-  ASSERT_EQ(r.stopped, "collapse");
+  ASSERT_EQ(r.status, RunStatus::collapse);
   for (const StepRecord& st : r.steps) {
     ASSERT_TRUE(st.sliding) << st.d;
     EXPECT_LE(st.sliding->required_angle, st.sliding->demand_angle + 1e-9);

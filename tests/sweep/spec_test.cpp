@@ -141,12 +141,12 @@ TEST(SweepPlan, FullFactorialWithOnePrdRunPerNonDemCombination) {
   EXPECT_EQ(plan_sweep(input("{" + kHead + R"("methods": ["prd"], "vary": {"dem.friction_angle": [20, 30]}})")).runs.size(), 1u);
 }
 
-SweepRow row(const SweepPlan& p, int i, const std::string& stopped, double cap, const std::string& msg = "") {
+SweepRow row(const SweepPlan& p, int i, RunStatus status, double cap, const std::string& msg = "") {
   SweepRow r;
   r.index = i;
   r.id = p.runs[i].id;
   r.method = p.runs[i].method;
-  r.stopped = stopped;
+  r.status = status;
   r.capacity = cap;
   r.time_s = 0.1 + i / 7.0;  // not a short decimal: the table must read back the same double
   r.message = msg;
@@ -156,20 +156,20 @@ SweepRow row(const SweepPlan& p, int i, const std::string& stopped, double cap, 
 TEST(SweepTable, ReadsBackWhatItWrites) {
   const SweepPlan p = plan_sweep(input("{" + kHead + R"("vary": {"dem.friction_angle": [20, 30, 40]}})"));
   SweepTable t(p.runs.size());
-  t[0] = row(p, 0, "collapse", 0.45);
+  t[0] = row(p, 0, RunStatus::collapse, 0.45);
   t[0]->required_friction_angle = 26.0;
-  t[1] = row(p, 1, "collapse", 0.3490658503988659);
-  t[2] = row(p, 2, "error", 0, "dem: bad, \"very\" bad");
+  t[1] = row(p, 1, RunStatus::collapse, 0.3490658503988659);
+  t[2] = row(p, 2, RunStatus::error, 0, "dem: bad, \"very\" bad");
   const std::string csv = sweep_csv(p, t);
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "run,id,method,dem.friction_angle,capacity,stopped,time_s,diff_prd,required_friction_angle,message");
   const SweepTable back = read_sweep_csv(p, csv, "sweep.csv");
   ASSERT_EQ(back.size(), 4u);
   for (int i = 0; i < 3; ++i) {
     ASSERT_TRUE(back[i]) << i;
-    EXPECT_EQ(back[i]->stopped, t[i]->stopped);
+    EXPECT_EQ(back[i]->status, t[i]->status);
     EXPECT_EQ(back[i]->time_s, t[i]->time_s);
     EXPECT_EQ(back[i]->message, t[i]->message);
-    if (t[i]->stopped != "error") {
+    if (t[i]->status != RunStatus::error) {
       EXPECT_EQ(back[i]->capacity, t[i]->capacity);
     }
   }
@@ -194,7 +194,7 @@ TEST(SweepTable, ReadsBackWhatItWrites) {
 TEST(SweepTable, RefusesATableOfAnotherSweep) {
   const SweepPlan p = plan_sweep(input("{" + kHead + R"("vary": {"dem.friction_angle": [20, 30]}})"));
   SweepTable t(p.runs.size());
-  t[1] = row(p, 1, "collapse", 0.3);
+  t[1] = row(p, 1, RunStatus::collapse, 0.3);
   const std::string csv = sweep_csv(p, t);
   // The same columns, another case setting: every id differs.
   const SweepPlan q = plan_sweep(input("{" + kHead + R"("vary": {"dem.friction_angle": [20, 30]}, "set": {"dem.damping": 0.7}})"));
@@ -212,10 +212,10 @@ TEST(SweepTable, RefusesATableOfAnotherSweep) {
 TEST(SweepSummary, BoundaryIsTheLargestFrictionAngleWhereTheyDiffer) {
   const SweepPlan p = plan_sweep(input("{" + kHead + R"("vary": {"dem.friction_angle": [10, 20, 30, 40]}})"));
   SweepTable t(p.runs.size());
-  t[0] = row(p, 0, "collapse", 1.0);
+  t[0] = row(p, 0, RunStatus::collapse, 1.0);
   // |diff| = 0.5, 0.1, 0.03, 0: beyond 5% up to 20 degrees, then within.
   const double caps[] = {0.5, 0.9, 0.97, 1.0};
-  for (int k = 0; k < 4; ++k) t[1 + k] = row(p, 1 + k, "collapse", caps[k]);
+  for (int k = 0; k < 4; ++k) t[1 + k] = row(p, 1 + k, RunStatus::collapse, caps[k]);
   SweepSummary s = summarize(p, t);
   EXPECT_EQ(s.x, "dem.friction_angle");
   ASSERT_EQ(s.curves.size(), 1u);
@@ -224,14 +224,14 @@ TEST(SweepSummary, BoundaryIsTheLargestFrictionAngleWhereTheyDiffer) {
   EXPECT_EQ(*s.curves[0].boundary, 20.0);
   EXPECT_TRUE(s.curves[0].boundary_clean);
   // Agreement at 20 and disagreement at 30: the largest disagreeing angle, not a clean boundary.
-  t[2] = row(p, 2, "collapse", 1.0);
-  t[3] = row(p, 3, "collapse", 0.8);
+  t[2] = row(p, 2, RunStatus::collapse, 1.0);
+  t[3] = row(p, 3, RunStatus::collapse, 0.8);
   s = summarize(p, t);
   EXPECT_EQ(*s.curves[0].boundary, 30.0);
   EXPECT_FALSE(s.curves[0].boundary_clean);
   // Agreement everywhere: no boundary. A failed run is left out of the curve.
-  for (int k = 1; k <= 3; ++k) t[k] = row(p, k, "collapse", 1.0);
-  t[4] = row(p, 4, "error", 0, "boom");
+  for (int k = 1; k <= 3; ++k) t[k] = row(p, k, RunStatus::collapse, 1.0);
+  t[4] = row(p, 4, RunStatus::error, 0, "boom");
   s = summarize(p, t);
   EXPECT_FALSE(s.curves[0].boundary);
   EXPECT_EQ(s.curves[0].runs, (std::vector<int>{1, 2, 3}));

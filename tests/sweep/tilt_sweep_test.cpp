@@ -36,7 +36,7 @@ TEST(TiltSweep, SlidesBelowAtanBOverHAndTopplesAbove) {
   // PRD: no sliding in its mechanisms, so it topples: the last stable tilt within one increment
   // below atan(b/h).
   ASSERT_TRUE(t[0]);
-  ASSERT_EQ(t[0]->stopped, "collapse") << t[0]->message;
+  ASSERT_EQ(t[0]->status, RunStatus::collapse) << t[0]->message;
   const double prd_tilt = t[0]->capacity * blk.rate;
   EXPECT_LE(prd_tilt, blk.topple());
   EXPECT_GT(prd_tilt, blk.topple() - blk.increment);
@@ -49,7 +49,7 @@ TEST(TiltSweep, SlidesBelowAtanBOverHAndTopplesAbove) {
   int sliding = 0, toppling = 0;
   for (int i = 1; i < 7; ++i) {
     ASSERT_TRUE(t[i]) << i;
-    ASSERT_EQ(t[i]->stopped, "collapse") << t[i]->message;
+    ASSERT_EQ(t[i]->status, RunStatus::collapse) << t[i]->message;
     const double phi = p.runs[i].values[0].get<double>() * kDeg;
     const double expected = blk.collapse(phi);
     const double tilt = t[i]->capacity * blk.rate;

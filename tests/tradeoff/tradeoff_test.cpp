@@ -208,7 +208,7 @@ TEST(TradeoffRun, PrdCapacitiesOnTheGridBelowTheToppleAngle) {
   const double s_ref = 0.004;
   const Row& ref = rows[0];
   ASSERT_TRUE(ref.reference);
-  ASSERT_EQ(ref.stopped, "collapse") << ref.message;
+  ASSERT_EQ(ref.status, RunStatus::collapse) << ref.message;
   EXPECT_NEAR(ref.capacity, grid_capacity(s_ref), 1e-9);
   EXPECT_LE(ref.capacity, topple_angle());
   EXPECT_GT(ref.capacity, topple_angle() - s_ref);
@@ -218,7 +218,7 @@ TEST(TradeoffRun, PrdCapacitiesOnTheGridBelowTheToppleAngle) {
   EXPECT_EQ(ref.thrust_rms_err, 0.0);
   for (const Row& r : rows) {
     SCOPED_TRACE(r.label);
-    ASSERT_EQ(r.stopped, "collapse") << r.message;
+    ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
     EXPECT_EQ(r.repeats, 2);
     EXPECT_LE(r.time_min_s, r.time_s);
     EXPECT_LE(r.time_s, r.time_max_s);
@@ -259,9 +259,9 @@ TEST(TradeoffRun, FailedRunsAreRecordedAndTheRestGoOn) {
   t.methods = {"dem"};
   t.rows = rows;
   for (const Row& r : rows) {
-    EXPECT_EQ(r.stopped, "error");
+    EXPECT_EQ(r.status, RunStatus::error);
     EXPECT_FALSE(r.message.empty());
-    EXPECT_FALSE(r.ok);
+    EXPECT_FALSE(r.ok());
     EXPECT_TRUE(std::isnan(r.capacity_err));
   }
   const test::Scratch scratch("tradeoff-failed");
