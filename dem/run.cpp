@@ -3,6 +3,7 @@
 // go back to the last equilibrium and bracket the collapse.
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -40,239 +41,293 @@ struct Attempt {
 };
 
 
+// The run: the model and its limits, where the loading stands, and the results as they grow.
+struct Run {
+  const Case& c;
+  const DemSettings& s;
+  const std::function<void(const RunResult&)>& on_step;
+  RunResult& r;
+  std::vector<Interface> joints;
+  DemModel m;
+  dem::Limits lim;
+  double ke_per_d = 0;  // J per m of d: the kinetic energy a move may carry, the servo's target
+  double bracket = 0;   // m: the collapse bracket's width
+  // Corner gaps of the settled initial configuration: hinges are measured from them.
+  std::vector<double> settled_gaps;
+  // The support speed at the end of the last move: the next move starts at a quarter of it, so
+  // the servo need not find the structure's pace again from the floor every increment.
+  double speed = 0;
+  DemSnapshot last_eq;  // the last equilibrium, at d_eq
+  double d_eq = 0;
+  int index = 0;        // of the next record (0: the settled initial configuration)
+  // Increments follow the grid k x step until a failure that was not confirmed moves the last
+  // equilibrium off it; from there they are step long, up to max_steps x step.
+  int k = 1;
+  bool on_grid = true;
+  nlohmann::ordered_json unconfirmed = nlohmann::ordered_json::array();
+  // The run's clocks, without the time spent handing out results.
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  double cpu0 = thread_cpu_s();
+  double io_s = 0, io_cpu_s = 0;
+
+  Run(const Case& c_, const DemSettings& s_, const std::function<void(const RunResult&)>& f, RunResult& r_)
+      : c(c_), s(s_), on_step(f), r(r_), joints(detect_interfaces(c_, c_.prd.contact_tolerance)), m(c_, s_) {}
+};
+
+// The failure that ends a stretch of increments, and the bracket around it.
+struct Failure {
+  Attempt attempt;
+  double d = 0;       // where it failed
+  double from = 0;    // the equilibrium the failed attempt started from
+  DemSnapshot state;  // the failed state
+  nlohmann::ordered_json trials = nlohmann::ordered_json::array();
+};
+
+void record_settings(Run& u) {
+  const DemSettings& s = u.s;
+  u.r.settings = {{"young_modulus", s.young_modulus},
+                  {"poisson", s.poisson},
+                  {"kn", u.m.kn()},
+                  {"ks", u.m.ks()},
+                  {"stiffness_reduction", s.stiffness_reduction},
+                  {"friction_angle", s.friction_angle},
+                  {"damping", s.damping},
+                  {"timestep_factor", s.timestep_factor},
+                  {"critical_dt", u.m.critical_dt()},
+                  {"dt", u.m.dt()},
+                  {"equilibrium_tolerance", s.equilibrium_tolerance},
+                  {"velocity_tolerance", s.velocity_tolerance},
+                  {"hold_time", s.hold_time},
+                  {"kinetic_ratio", s.kinetic_ratio},
+                  {"move_time", s.move_time},
+                  {"ramp_fraction", s.ramp_fraction},
+                  {"collapse_drift", u.lim.collapse_drift},
+                  {"bracket_fraction", s.bracket_fraction},
+                  {"open_gap", s.open_gap >= 0 ? s.open_gap : u.c.prd.contact_tolerance},
+                  {"step", s.step},
+                  {"max_steps", s.max_steps}};
+}
+
+// The run's own CPU and wall time so far, without handing out results.
+void sync_timing(Run& u) {
+  u.r.timing.cycles = u.m.cycles();
+  u.r.timing.total_s = thread_cpu_s() - u.cpu0 - u.io_cpu_s;
+  u.r.extra["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - u.t0).count() - u.io_s;
+}
+
+// Records the current state (after a hold) and hands the results out.
+void emit(Run& u, const HoldOutcome& h, long long cycles, long long move_cycles, bool bracketing, double lag) {
+  StepRecord rec = u.m.record(u.joints, u.settled_gaps);
+  rec.index = u.index++;
+  rec.extra["settled"] = h.end == HoldEnd::equilibrium;
+  rec.extra["hold_end"] = dem::hold_end_name(h.end);
+  if (bracketing) rec.extra["bracket"] = true;
+  rec.extra["cycles"] = cycles;
+  rec.extra["move_cycles"] = move_cycles;
+  rec.extra["lag"] = lag;
+  rec.extra["hold_time"] = h.time;
+  rec.extra["unbalanced_ratio"] = u.m.unbalanced_ratio();
+  rec.extra["max_speed"] = u.m.max_speed();
+  rec.extra["drift"] = h.drift;
+  rec.extra["contact_points"] = u.m.contact_points();
+  rec.extra["max_overlap"] = u.m.max_overlap();
+  require_finite(rec);
+  u.r.steps.push_back(std::move(rec));
+  u.r.timing.cycles = u.m.cycles();
+  if (!u.on_step) return;
+  const auto a = std::chrono::steady_clock::now();
+  const double a_cpu = thread_cpu_s();
+  sync_timing(u);
+  u.on_step(u.r);
+  u.io_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+  u.io_cpu_s += thread_cpu_s() - a_cpu;
+}
+
+void emit(Run& u, const Attempt& a, bool bracketing) { emit(u, a.hold, a.cycles, a.move_cycles, bracketing, a.lag()); }
+
+// An equilibrium reached at d: recorded, and the state to go back to.
+void settled_at(Run& u, const Attempt& a, double d, bool bracketing) {
+  emit(u, a, bracketing);
+  u.r.capacity = u.d_eq = d;
+  ++u.r.stable_steps;
+  u.last_eq = u.m.save();
+}
+
+// One attempt to reach d1 from an equilibrium at d0: move, then hold (watching at least `watch`
+// cycles, see dem::hold).
+Attempt attempt(Run& u, double d0, double d1, long long watch = 0) {
+  Attempt a;
+  const long long c0 = u.m.cycles();
+  const double ke_target = u.ke_per_d * (d1 - d0);
+  u.lim.ke_collapse = 10 * ke_target;
+  u.lim.move_drift = u.lim.collapse_drift + support_travel_per_d(u.c) * (d1 - d0);
+  const std::vector<Vec2> before = dem::positions(u.m, u.c);
+  const dem::MoveOutcome mv = dem::move(u.m, u.c, u.s, d0, d1, ke_target, u.speed / 4, u.lim);
+  u.speed = mv.speed;
+  a.move_cycles = mv.cycles;
+  a.move_drift = dem::largest_move(u.m, u.c, before);
+  if (mv.collapsed) {
+    a.hold.end = HoldEnd::collapse;  // no hold: the structure fell during the move
+  } else {
+    u.m.set_support_parameter(d1);
+    a.hold = dem::hold(u.m, u.c, u.s, u.lim, watch);
+  }
+  a.cycles = u.m.cycles() - c0;
+  return a;
+}
+
+// Stage 1: the initial configuration settles under gravity. Only a drift ends it as a collapse:
+// the kinetic energy of the first settling is no sign of one. Whether it settled.
+bool settle(Run& u) {
+  u.m.set_support_parameter(0);
+  u.lim.ke_collapse = INFINITY;
+  const HoldOutcome h0 = dem::hold(u.m, u.c, u.s, u.lim);
+  if (h0.end == HoldEnd::equilibrium) u.r.capacity = 0;
+  emit(u, h0, h0.cycles, 0, false, 0.0);  // absolute gaps: the settled crack pattern
+  if (h0.end != HoldEnd::equilibrium) {
+    u.r.collapsed = h0.end == HoldEnd::collapse;
+    u.r.status = u.r.collapsed ? RunStatus::collapse : RunStatus::undecided;
+    if (!u.r.collapsed)
+      u.r.message = "the initial configuration neither settled nor ran away within the hold cap (" + std::to_string(u.s.hold_time) +
+                    " s): no capacity";
+    return false;
+  }
+  u.settled_gaps = u.m.corner_gaps(u.joints);
+  u.last_eq = u.m.save();
+  u.d_eq = 0;
+  return true;
+}
+
+// Stage 2: increments, each a move and a hold, from the last equilibrium, until one fails
+// (returned) or the path ends (nothing).
+std::optional<Failure> increments(Run& u) {
+  const double d_end = u.s.max_steps * u.s.step;
+  while (u.on_grid ? u.k <= u.s.max_steps : u.d_eq + u.s.step <= d_end * (1 + 1e-12)) {
+    const double d1 = u.on_grid ? u.k * u.s.step : u.d_eq + u.s.step;
+    ++u.k;
+    const Attempt a = attempt(u, u.d_eq, d1);
+    if (a.hold.end != HoldEnd::equilibrium) {
+      Failure f;
+      f.attempt = a;
+      f.d = d1;
+      f.from = u.d_eq;
+      f.trials.push_back({{"d", d1}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}});
+      f.state = u.m.save();
+      return f;
+    }
+    settled_at(u, a, d1, false);
+  }
+  return std::nullopt;
+}
+
+// Stage 3: the collapse bracket. Back to the last equilibrium, halve the failed increment until
+// the bracket is narrower than bracket_fraction x step. A trial that does not settle (collapse
+// or undecided) moves the upper end; one that settles is a recorded equilibrium and moves the
+// lower end.
+void bracket(Run& u, Failure& f) {
+  while (u.bracket > 0 && f.d - u.d_eq > u.bracket) {
+    u.m.restore(u.last_eq);
+    u.speed = 0;
+    const double mid = 0.5 * (u.d_eq + f.d);
+    const Attempt a = attempt(u, u.d_eq, mid);
+    f.trials.push_back({{"d", mid}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}});
+    if (a.hold.end == HoldEnd::equilibrium) {
+      settled_at(u, a, mid, true);
+    } else {
+      f.attempt = a;
+      f.d = mid;
+      f.from = u.d_eq;
+      f.state = u.m.save();
+    }
+  }
+}
+
+// Stage 4 (DemSettings::confirm_collapse): confirm the collapse. The failure at f.d was reached
+// by a move from f.from; if the bracket's lower end has moved up since, the collapse must also
+// follow from the last equilibrium by a move shorter than the bracket. Where it does not, the
+// longer move's own dynamics tipped the structure over (every trial below f.d settling is the
+// sign: the failure sits on the increment grid), so f.d is an equilibrium, not the capacity,
+// and the increments go on from there. Whether it was confirmed.
+bool confirm(Run& u, Failure& f) {
+  if (!u.s.confirm_collapse || u.bracket <= 0 || f.from >= u.d_eq) return true;
+  u.m.restore(u.last_eq);
+  u.speed = 0;
+  // The confirming hold does not end at the first equilibrium: past an unstable one the
+  // structure starts from rest, so the hold watches four times as long as the failure took to
+  // show itself (at most the cap) before it calls the state settled. (A perturbation 100 times
+  // smaller, a move under 1% of the step, takes ln 100 = 4.6 more growth times to reach the
+  // same size.)
+  const Attempt a = attempt(u, u.d_eq, f.d, 4 * f.attempt.hold.cycles);
+  f.trials.push_back({{"d", f.d}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}, {"confirm", true}});
+  if (a.hold.end == HoldEnd::equilibrium) {
+    u.unconfirmed.push_back({{"d", f.d}, {"reached_from", f.from}, {"settled_from", u.d_eq}});
+    settled_at(u, a, f.d, true);
+    u.on_grid = false;
+    return false;
+  }
+  f.attempt = a;
+  f.state = u.m.save();
+  return true;
+}
+
+// The end of a located failure: the failed state nearest the capacity closes the record.
+void close(Run& u, const Failure& f) {
+  u.m.restore(f.state);
+  emit(u, f.attempt, u.bracket > 0);
+  u.r.extra["collapse_bracket"] = {{"equilibrium", u.d_eq}, {"failed", f.d}, {"width", f.d - u.d_eq}, {"trials", f.trials}};
+  // A collapse shown anywhere beyond the capacity makes the run a collapse; the bracket's upper
+  // end may still be a hold that had not decided when the cap came.
+  bool any_collapse = false;
+  for (const auto& t : f.trials) any_collapse = any_collapse || t["end"] == "collapse";
+  u.r.collapsed = any_collapse;
+  u.r.status = u.r.collapsed ? RunStatus::collapse : RunStatus::undecided;
+  if (!u.r.collapsed) {
+    std::ostringstream msg;
+    msg << "the hold at d = " << f.d << " m neither settled nor ran away within the hold cap (" << u.s.hold_time
+        << " s): the capacity " << u.d_eq << " m is the last equilibrium, not a located collapse";
+    u.r.message = msg.str();
+  }
+}
+
 }  // namespace
 
 RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(const RunResult&)>& on_step) {
-  using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  const double cpu0 = thread_cpu_s();
-  double io_s = 0, io_cpu_s = 0;
   RunResult r;
   r.method = "dem";
   r.case_name = c.name;
   r.total_weight = total_weight(c);
-  const std::vector<Interface> joints = detect_interfaces(c, c.prd.contact_tolerance);
-  for (const Interface& J : joints) r.joints.push_back({J.i, J.j, J.a, J.b});
-
-  DemModel m(c, s);
-  dem::Limits lim;
+  Run u(c, s, on_step, r);
+  for (const Interface& J : u.joints) r.joints.push_back({J.i, J.j, J.a, J.b});
   // A block that travels 2% of the scene during a hold, with the supports at rest, has left its
   // equilibrium for good. Smaller drifts are not evidence: a hinge that jumps to another joint
   // snaps the pointed arch by 4 mm (0.2% of its size) to a new equilibrium near d = 0.09 m.
-  lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
-  lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
-  // The kinetic energy a move may carry per metre of d: the target of the speed servo.
-  const double ke_per_d = s.kinetic_ratio * r.total_weight * support_travel_per_d(c);
-  const double bracket = s.bracket_fraction * s.step;
-  r.settings = {{"young_modulus", s.young_modulus},
-                {"poisson", s.poisson},
-                {"kn", m.kn()},
-                {"ks", m.ks()},
-                {"stiffness_reduction", s.stiffness_reduction},
-                {"friction_angle", s.friction_angle},
-                {"damping", s.damping},
-                {"timestep_factor", s.timestep_factor},
-                {"critical_dt", m.critical_dt()},
-                {"dt", m.dt()},
-                {"equilibrium_tolerance", s.equilibrium_tolerance},
-                {"velocity_tolerance", s.velocity_tolerance},
-                {"hold_time", s.hold_time},
-                {"kinetic_ratio", s.kinetic_ratio},
-                {"move_time", s.move_time},
-                {"ramp_fraction", s.ramp_fraction},
-                {"collapse_drift", lim.collapse_drift},
-                {"bracket_fraction", s.bracket_fraction},
-                {"open_gap", s.open_gap >= 0 ? s.open_gap : c.prd.contact_tolerance},
-                {"step", s.step},
-                {"max_steps", s.max_steps}};
-
-  // Corner gaps of the settled initial configuration: hinges are measured from them.
-  std::vector<double> settled_gaps;
-  auto emit = [&](int index, const HoldOutcome& h, long long cycles, long long move_cycles, bool bracketing, double lag) {
-    StepRecord rec = m.record(joints, settled_gaps);
-    rec.index = index;
-    rec.extra["settled"] = h.end == HoldEnd::equilibrium;
-    rec.extra["hold_end"] = dem::hold_end_name(h.end);
-    if (bracketing) rec.extra["bracket"] = true;
-    rec.extra["cycles"] = cycles;
-    rec.extra["move_cycles"] = move_cycles;
-    rec.extra["lag"] = lag;
-    rec.extra["hold_time"] = h.time;
-    rec.extra["unbalanced_ratio"] = m.unbalanced_ratio();
-    rec.extra["max_speed"] = m.max_speed();
-    rec.extra["drift"] = h.drift;
-    rec.extra["contact_points"] = m.contact_points();
-    rec.extra["max_overlap"] = m.max_overlap();
-    require_finite(rec);
-    r.steps.push_back(std::move(rec));
-    r.timing.cycles = m.cycles();
-    if (on_step) {
-      const auto a = clock::now();
-      const double a_cpu = thread_cpu_s();
-      r.timing.total_s = a_cpu - cpu0 - io_cpu_s;
-      r.extra["wall_s"] = std::chrono::duration<double>(a - t0).count() - io_s;
-      on_step(r);
-      io_s += std::chrono::duration<double>(clock::now() - a).count();
-      io_cpu_s += thread_cpu_s() - a_cpu;
-    }
-  };
-
-  // The support speed at the end of the last move: the next move starts at a quarter of it, so
-  // the servo need not find the structure's pace again from the floor every increment.
-  double speed = 0;
-  auto attempt = [&](double d0, double d1, long long watch = 0) {
-    Attempt a;
-    const long long c0 = m.cycles();
-    const double ke_target = ke_per_d * (d1 - d0);
-    lim.ke_collapse = 10 * ke_target;
-    lim.move_drift = lim.collapse_drift + support_travel_per_d(c) * (d1 - d0);
-    const std::vector<Vec2> before = dem::positions(m, c);
-    const dem::MoveOutcome mv = dem::move(m, c, s, d0, d1, ke_target, speed / 4, lim);
-    speed = mv.speed;
-    a.move_cycles = mv.cycles;
-    a.move_drift = dem::largest_move(m, c, before);
-    if (mv.collapsed) {
-      a.hold.end = HoldEnd::collapse;  // no hold: the structure fell during the move
-    } else {
-      m.set_support_parameter(d1);
-      a.hold = dem::hold(m, c, s, lim, watch);
-    }
-    a.cycles = m.cycles() - c0;
-    return a;
-  };
-
+  u.lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
+  u.lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
+  u.ke_per_d = s.kinetic_ratio * r.total_weight * support_travel_per_d(c);
+  u.bracket = s.bracket_fraction * s.step;
+  record_settings(u);
   try {
-    // Stage 1: the initial configuration settles under gravity. Only a drift ends it as a
-    // collapse: the kinetic energy of the first settling is no sign of one.
-    m.set_support_parameter(0);
-    lim.ke_collapse = INFINITY;
-    const HoldOutcome h0 = dem::hold(m, c, s, lim);
-    if (h0.end == HoldEnd::equilibrium) r.capacity = 0;
-    emit(0, h0, h0.cycles, 0, false, 0.0);  // absolute gaps: the settled crack pattern
-    if (h0.end != HoldEnd::equilibrium) {
-      r.collapsed = h0.end == HoldEnd::collapse;
-      r.status = r.collapsed ? RunStatus::collapse : RunStatus::undecided;
-      if (!r.collapsed)
-        r.message = "the initial configuration neither settled nor ran away within the hold cap (" + std::to_string(s.hold_time) +
-                    " s): no capacity";
-    } else {
-      settled_gaps = m.corner_gaps(joints);
-      DemSnapshot last_eq = m.save();
-      double d_eq = 0;
-      int index = 1;
-      // Increments follow the grid k x step until a failure that was not confirmed moves the
-      // last equilibrium off it; from there they are step long, up to max_steps x step.
-      int k = 1;
-      bool on_grid = true;
-      const double d_end = s.max_steps * s.step;
-      nlohmann::ordered_json unconfirmed = nlohmann::ordered_json::array();
-      while (true) {
-        // Stage 2: increments, each a move and a hold, from the last equilibrium.
-        Attempt failed;
-        double d_fail = 0;
-        bool failure = false;
-        while (on_grid ? k <= s.max_steps : d_eq + s.step <= d_end * (1 + 1e-12)) {
-          const double d1 = on_grid ? k * s.step : d_eq + s.step;
-          ++k;
-          const Attempt a = attempt(d_eq, d1);
-          if (a.hold.end != HoldEnd::equilibrium) {
-            failed = a;
-            d_fail = d1;
-            failure = true;
-            break;
-          }
-          emit(index++, a.hold, a.cycles, a.move_cycles, false, a.lag());
-          r.capacity = d_eq = d1;
-          ++r.stable_steps;
-          last_eq = m.save();
-        }
-        if (!failure) {
+    if (settle(u)) {
+      for (;;) {
+        std::optional<Failure> f = increments(u);
+        if (!f) {
           // Only now: the results handed out on the way say "running", so a run stopped from
           // outside does not look finished.
           r.status = RunStatus::max_steps;
           break;
         }
-        // Stage 3: the collapse bracket. Back to the last equilibrium, halve the failed
-        // increment until the bracket is narrower than bracket_fraction x step. A trial that
-        // does not settle (collapse or undecided) moves the upper end; one that settles is a
-        // recorded equilibrium and moves the lower end.
-        nlohmann::ordered_json trials = nlohmann::ordered_json::array();
-        trials.push_back({{"d", d_fail}, {"end", dem::hold_end_name(failed.hold.end)}, {"cycles", failed.cycles}});
-        DemSnapshot failed_state = m.save();
-        double failed_from = d_eq;  // the equilibrium the failed attempt at d_fail started from
-        while (bracket > 0 && d_fail - d_eq > bracket) {
-          m.restore(last_eq);
-          speed = 0;
-          const double mid = 0.5 * (d_eq + d_fail);
-          const Attempt a = attempt(d_eq, mid);
-          trials.push_back({{"d", mid}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}});
-          if (a.hold.end == HoldEnd::equilibrium) {
-            emit(index++, a.hold, a.cycles, a.move_cycles, true, a.lag());
-            r.capacity = d_eq = mid;
-            ++r.stable_steps;
-            last_eq = m.save();
-          } else {
-            failed = a;
-            d_fail = mid;
-            failed_from = d_eq;
-            failed_state = m.save();
-          }
-        }
-        // Stage 4: confirm the collapse. The failure at d_fail was reached by a move from
-        // failed_from; if the bracket's lower end has moved up since, the collapse must also
-        // follow from the last equilibrium by a move shorter than the bracket. Where it does
-        // not, the longer move's own dynamics tipped the structure over (every trial below
-        // d_fail settling is the sign: the failure sits on the increment grid), so d_fail is
-        // an equilibrium, not the capacity, and the increments go on from there.
-        if (s.confirm_collapse && bracket > 0 && failed_from < d_eq) {
-          m.restore(last_eq);
-          speed = 0;
-          // The confirming hold does not end at the first equilibrium: past an unstable one
-          // the structure starts from rest, so the hold watches four times as long as the
-          // failure took to show itself (at most the cap) before it calls the state settled.
-          // (A perturbation 100 times smaller, a move under 1% of the step, takes ln 100 = 4.6
-          // more growth times to reach the same size.)
-          const Attempt a = attempt(d_eq, d_fail, 4 * failed.hold.cycles);
-          trials.push_back({{"d", d_fail}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}, {"confirm", true}});
-          if (a.hold.end == HoldEnd::equilibrium) {
-            unconfirmed.push_back({{"d", d_fail}, {"reached_from", failed_from}, {"settled_from", d_eq}});
-            emit(index++, a.hold, a.cycles, a.move_cycles, true, a.lag());
-            r.capacity = d_eq = d_fail;
-            ++r.stable_steps;
-            last_eq = m.save();
-            on_grid = false;
-            continue;
-          }
-          failed = a;
-          failed_state = m.save();
-        }
-        // The failed state nearest the capacity closes the record.
-        m.restore(failed_state);
-        emit(index++, failed.hold, failed.cycles, failed.move_cycles, bracket > 0, failed.lag());
-        r.extra["collapse_bracket"] = {{"equilibrium", d_eq}, {"failed", d_fail}, {"width", d_fail - d_eq}, {"trials", trials}};
-        // A collapse shown anywhere beyond the capacity makes the run a collapse; the bracket's
-        // upper end may still be a hold that had not decided when the cap came.
-        bool any_collapse = false;
-        for (const auto& t : trials) any_collapse = any_collapse || t["end"] == "collapse";
-        r.collapsed = any_collapse;
-        r.status = r.collapsed ? RunStatus::collapse : RunStatus::undecided;
-        if (!r.collapsed) {
-          std::ostringstream msg;
-          msg << "the hold at d = " << d_fail << " m neither settled nor ran away within the hold cap (" << s.hold_time
-              << " s): the capacity " << d_eq << " m is the last equilibrium, not a located collapse";
-          r.message = msg.str();
-        }
+        bracket(u, *f);
+        if (!confirm(u, *f)) continue;
+        close(u, *f);
         break;
       }
-      if (!unconfirmed.empty()) r.extra["unconfirmed_failures"] = unconfirmed;
+      if (!u.unconfirmed.empty()) r.extra["unconfirmed_failures"] = u.unconfirmed;
     }
   } catch (const std::exception& e) {
     r.status = RunStatus::error;
     r.message = e.what();
   }
-  r.timing.cycles = m.cycles();
-  r.timing.total_s = thread_cpu_s() - cpu0 - io_cpu_s;
-  r.extra["wall_s"] = std::chrono::duration<double>(clock::now() - t0).count() - io_s;
+  sync_timing(u);
   return r;
 }
 
