@@ -114,14 +114,31 @@ struct DemModel::Impl {
 
   Impl(const Case& cs, const DemSettings& st) : c(cs), s(st) {}
 
+  // Setup, in this order.
   void setup();
+  void check_settings() const;
+  void build_blocks();     // blocks' arrays, convex pieces, dead loads
+  void set_time_step();    // joint stiffnesses, the critical time step, dt
+
   void place_support(int b, double d, Vec2& x, double& th) const;
   void transform_pieces(bool all);
   void rebuild();
+  // One cycle: its stages, in this order (each a loop of its own over contiguous arrays).
   void step();
+  void body_forces();     // gravity and the dead loads
+  void contact_forces();  // narrow phase and the joint law, on both blocks of each pair
+  void integrate();       // supports to their prescribed pose; free blocks by damped central differences
 };
 
 void DemModel::Impl::setup() {
+  check_settings();
+  build_blocks();
+  set_time_step();
+  transform_pieces(true);
+  rebuild();
+}
+
+void DemModel::Impl::check_settings() const {
   // Settings come from the case's dem section or from the command line: a refusal names the
   // file and the case field (the option of the same name), with the value.
   auto refuse = [&](const char* field, double value, const char* rule) {
@@ -152,6 +169,9 @@ void DemModel::Impl::setup() {
   if (!(s.velocity_tolerance > 0)) refuse("velocity_tolerance", s.velocity_tolerance, "must be positive (m/s)");
   if (!(s.step > 0)) refuse("step", s.step, "(motion.step) must be positive (m)");
   if (s.max_steps < 0) refuse("max_steps", s.max_steps, "(motion.max_steps) must be >= 0");
+}
+
+void DemModel::Impl::build_blocks() {
   nb = static_cast<int>(c.blocks.size());
   support.assign(nb, 0);
   mass.assign(nb, 0);
@@ -173,9 +193,8 @@ void DemModel::Impl::setup() {
   motion_of.assign(nb, -1);
   for (size_t k = 0; k < c.motion.supports.size(); ++k) motion_of[c.motion.supports[k].block] = static_cast<int>(k);
 
-  double area_sum = 0, min_size = INFINITY;
+  double min_size = INFINITY;
   int nfree = 0;
-  double lam = 0;  // bound on omega^2 / (kn + ks) pieces, filled below once kn, ks are known
   for (int b = 0; b < nb; ++b) {
     const Block& bl = c.blocks[b];
     support[b] = bl.support;
@@ -191,7 +210,6 @@ void DemModel::Impl::setup() {
                                  " kg) or moment of inertia is not positive and finite");
       gyr[b] = std::sqrt(inertia[b] / mass[b]);
       wref[b] = mass[b] * c.gravity;
-      area_sum += area;
       min_size = std::min(min_size, std::sqrt(area));
       ++nfree;
     }
@@ -219,7 +237,14 @@ void DemModel::Impl::setup() {
   }
   for (int b = 0; b < nb; ++b)
     if (!support[b] && !(wref[b] > 0)) wref[b] = 1.0;  // weightless, unloaded: ratio in newtons
+  margin = 0.05 * min_size;
+}
 
+void DemModel::Impl::set_time_step() {
+  double area_sum = 0;
+  int nfree = 0;
+  for (int b = 0; b < nb; ++b)
+    if (!support[b]) area_sum += std::abs(signed_area(c.blocks[b].vertices)), ++nfree;
   const double h_block = std::sqrt(area_sum / nfree);
   const double G = s.young_modulus / (2 * (1 + s.poisson));
   kn = (s.kn ? *s.kn : s.young_modulus / h_block) / s.stiffness_reduction;
@@ -232,6 +257,7 @@ void DemModel::Impl::setup() {
     throw std::runtime_error(m.str());
   }
 
+  double lam = 0;  // bound on omega^2 / (kn + ks)
   for (int b = 0; b < nb; ++b) {
     if (support[b]) continue;
     // The faces contacts see: a straight-angle vertex would split a face in the bound's sum.
@@ -254,10 +280,7 @@ void DemModel::Impl::setup() {
     throw std::runtime_error(m.str());
   }
   dt = s.timestep_factor * dt_crit;
-  margin = 0.05 * min_size;
   open_gap = s.open_gap >= 0 ? s.open_gap : c.prd.contact_tolerance;
-  transform_pieces(true);
-  rebuild();
 }
 
 void DemModel::Impl::place_support(int b, double d, Vec2& x, double& th) const {
@@ -355,6 +378,14 @@ void DemModel::Impl::rebuild() {
 void DemModel::Impl::step() {
   if (rebuild_due) rebuild();
   transform_pieces(false);
+  body_forces();
+  contact_forces();
+  integrate();
+  time += dt;
+  ++cycles;
+}
+
+void DemModel::Impl::body_forces() {
   for (int b = 0; b < nb; ++b) {
     force[b] = Vec2(0, -mass[b] * c.gravity);
     torque[b] = 0;
@@ -365,6 +396,9 @@ void DemModel::Impl::step() {
     force[b] += load_force[l];
     torque[b] += cross(r, load_force[l]);
   }
+}
+
+void DemModel::Impl::contact_forces() {
   Manifold m;
   for (Pair& pr : pairs) {
     const int pa = pr.pa, pb = pr.pb, ba = pr.ba, bb = pr.bb;
@@ -411,6 +445,9 @@ void DemModel::Impl::step() {
       ps.normal = n;
     }
   }
+}
+
+void DemModel::Impl::integrate() {
   double unb = 0, spd = 0, kin = 0;
   const double alpha = s.damping;
   const double half_margin = 0.5 * margin;
@@ -462,8 +499,6 @@ void DemModel::Impl::step() {
   unbalanced = unb;
   speed = spd;
   ke = kin;
-  time += dt;
-  ++cycles;
 }
 
 DemModel::DemModel(const Case& c, const DemSettings& s) : p_(std::make_unique<Impl>(c, s)) { p_->setup(); }
