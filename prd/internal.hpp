@@ -137,9 +137,24 @@ struct Move {
 //    with the loads on the current geometry, and |T_j| <= mu N_j at every joint. For a given
 //    mu that is a linear feasibility problem, so mu is found by bisection between 0 and the
 //    dual state's demand (feasible by construction).
+//
+// The feasibility problem's data (no GLPK in it): columns f_n per closed corner, then f_t per
+// joint in contact; rows: equilibrium of each free block (numbered as the PRD LP's columns),
+// then two friction rows per joint in contact, |f_t| <= mu sum f_n written as two.
+struct FrictionProblem {
+  int ncols = 0, nrows_eq = 0;
+  std::vector<int> ia{0}, ja{0};  // equilibrium coefficients, GLPK's 1-based triplets
+  std::vector<double> ar{0.0};
+  std::vector<double> loads;       // generalised_loads: each equilibrium row's right-hand side is -loads
+  std::vector<int> fn_col;         // per corner: its f_n column, 0 if open
+  std::vector<int> ft_col;         // per joint: its f_t column, 0 if not in contact
+  std::vector<int> joints_in_contact;
+};
+// Its GLPK problem, loaded once per configuration and solved for several mu, warm started.
 struct SlidingLp {
   std::unique_ptr<glp_prob, GlpDeleter> lp{glp_create_prob()};
   long long solves = 0;
+  bool fresh = true;  // no solve yet on the loaded problem: start from the standard basis
 };
 
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
@@ -161,6 +176,10 @@ void lp_check_fields(const Model& m, double scale, StepRecord& rec);
 std::vector<double> column_values(const Model& m);
 void save_basis(const Model& m, Accepted& a);
 int evaluate_basis(Model& m, const Accepted& a, double h, double h_open);
+// The sliding check's feasibility LP (sliding.cpp builds the problem).
+void load_friction_lp(SlidingLp& S, const FrictionProblem& p);
+bool friction_feasible(SlidingLp& S, const FrictionProblem& p, double mu);  // an admissible state at mu
+double friction_col_value(const SlidingLp& S, int j);  // of the last feasible solve
 
 // ---- motion.cpp: finite rigid motion, gaps and the contact state, configuration records.
 Vec2 pole_displacement(const Vec2& u, double th);

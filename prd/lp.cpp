@@ -1,5 +1,5 @@
-// The layer over GLPK, its only user besides the sliding check's own LP: the PRD LP built,
-// rewritten for each configuration, solved, and read.
+// The layer over GLPK, its only user: the PRD LP built, rewritten for each configuration,
+// solved, and read; and the sliding check's feasibility LP (at the end of this file).
 //
 // Variables: per free block b, U'_b = (u_x, u_y, theta * L_b) / step, the rigid increment at
 // the current centroid in units of the step (so GLPK's tolerances are relative to the step)
@@ -324,5 +324,53 @@ int evaluate_basis(Model& m, const Accepted& a, double h, double h_open) {
   ++m.basis_evaluations;
   return rc;
 }
+
+// ---- The sliding check's feasibility LP (FrictionProblem in internal.hpp).
+
+void load_friction_lp(SlidingLp& S, const FrictionProblem& p) {
+  glp_prob* lp = S.lp.get();
+  glp_erase_prob(lp);
+  S.fresh = true;
+  glp_add_cols(lp, p.ncols);
+  for (int j = 1; j <= p.ncols; ++j) glp_set_col_bnds(lp, j, GLP_LO, 0, 0);
+  for (int jt : p.joints_in_contact) glp_set_col_bnds(lp, p.ft_col[jt], GLP_FR, 0, 0);
+  glp_add_rows(lp, p.nrows_eq + 2 * static_cast<int>(p.joints_in_contact.size()));
+  for (int r = 1; r <= p.nrows_eq; ++r) glp_set_row_bnds(lp, r, GLP_FX, -p.loads[r], -p.loads[r]);
+  for (size_t q = 0; q < p.joints_in_contact.size(); ++q)
+    for (int s = 0; s < 2; ++s) glp_set_row_bnds(lp, p.nrows_eq + 2 * static_cast<int>(q) + 1 + s, GLP_UP, 0, 0);
+  glp_load_matrix(lp, static_cast<int>(p.ia.size()) - 1, p.ia.data(), p.ja.data(), p.ar.data());
+}
+
+bool friction_feasible(SlidingLp& S, const FrictionProblem& p, double mu) {
+  glp_prob* lp = S.lp.get();
+  // The friction rows at this mu:  f_t - mu sum f_n <= 0  and  -f_t - mu sum f_n <= 0.
+  std::vector<int> ind;
+  std::vector<double> val;
+  for (size_t q = 0; q < p.joints_in_contact.size(); ++q) {
+    const int jt = p.joints_in_contact[q];
+    for (int s = 0; s < 2; ++s) {
+      ind.assign(1, 0);
+      val.assign(1, 0.0);
+      ind.push_back(p.ft_col[jt]), val.push_back(s == 0 ? 1.0 : -1.0);
+      for (int c = 0; c < 2; ++c)
+        if (p.fn_col[2 * jt + c]) ind.push_back(p.fn_col[2 * jt + c]), val.push_back(-mu);
+      glp_set_mat_row(lp, p.nrows_eq + 2 * static_cast<int>(q) + 1 + s, static_cast<int>(ind.size()) - 1, ind.data(), val.data());
+    }
+  }
+  glp_smcp parm;
+  glp_init_smcp(&parm);
+  parm.msg_lev = GLP_MSG_OFF;
+  parm.it_lim = 1000 + 50 * (glp_get_num_rows(lp) + p.ncols);
+  if (S.fresh) glp_std_basis(lp), S.fresh = false;
+  ++S.solves;
+  int rc = glp_simplex(lp, &parm);
+  if (rc != 0) {  // a stalled warm start: once more from the standard basis
+    glp_std_basis(lp);
+    rc = glp_simplex(lp, &parm);
+  }
+  return rc == 0 && glp_get_status(lp) == GLP_OPT;
+}
+
+double friction_col_value(const SlidingLp& S, int j) { return glp_get_col_prim(S.lp.get(), j); }
 
 }  // namespace masonry::prd_detail

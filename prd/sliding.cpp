@@ -1,109 +1,81 @@
 // The sliding check (PrdSettings::sliding_check) of one configuration, and its summaries.
-#include <glpk.h>
+#include <cmath>
+#include <utility>
 
 #include "internal.hpp"
 
 namespace masonry::prd_detail {
 
-void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec) {
-  // Demand of the dual state.
+namespace {
+
+// The dual state's friction demand: the largest |T|/N over the joint resultants, as an angle
+// (rad), and its joint.
+std::pair<double, int> demand_of(const StepRecord& rec) {
   double demand = 0;
-  int demand_joint = -1;
+  int joint = -1;
   for (const JointForce& f : rec.forces) {
     const double a = f.normal > 0 ? std::atan(std::abs(f.shear) / f.normal) : (f.shear != 0 ? M_PI / 2 : 0.0);
-    if (a > demand) demand = a, demand_joint = f.joint;
+    if (a > demand) demand = a, joint = f.joint;
   }
+  return {demand, joint};
+}
 
-  // The feasibility LP: columns f_n per closed corner, then f_t per joint in contact; rows:
-  // equilibrium of each free block (numbered as the PRD LP's columns), then two friction rows
-  // per joint in contact.
-  glp_prob* lp = S.lp.get();
-  glp_erase_prob(lp);
-  const int nrows_eq = m.ncols;
-  std::vector<int> ia{0}, ja{0};
-  std::vector<double> ar{0.0};
-  std::vector<int> fn_col(m.ends.size(), 0), ft_col(m.joints.size(), 0);
-  std::vector<int> joints_in_contact;
-  int ncols = 0;
-  auto add_force = [&](int col, int b, const Vec2& F, const Vec2& p) {
+// The feasibility problem of the current configuration: each closed corner's normal force and
+// each joint's shear, acting on both blocks at the corner's current position.
+FrictionProblem friction_problem(const Model& m) {
+  FrictionProblem p;
+  p.nrows_eq = m.ncols;
+  p.fn_col.assign(m.ends.size(), 0);
+  p.ft_col.assign(m.joints.size(), 0);
+  auto add_force = [&](int col, int b, const Vec2& F, const Vec2& x) {
     if (m.col[b] < 0) return;
     const int k = m.col[b];
-    const double v[3] = {F.x(), F.y(), cross(p - m.cen[b], F) / m.radius[b]};
+    const double v[3] = {F.x(), F.y(), cross(x - m.cen[b], F) / m.radius[b]};
     for (int r = 0; r < 3; ++r)
-      if (v[r] != 0) ia.push_back(k + r), ja.push_back(col), ar.push_back(v[r]);
+      if (v[r] != 0) p.ia.push_back(k + r), p.ja.push_back(col), p.ar.push_back(v[r]);
   };
   for (size_t e = 0; e < m.ends.size(); ++e) {
     if (!m.ends[e].closed) continue;
     const Endpoint& ep = m.ends[e];
     const Interface& jt = m.joints[ep.joint];
-    const Vec2 n = m.normal(ep), p = 0.5 * (m.pos(jt.i, ep.X) + m.pos(jt.j, ep.X));
-    fn_col[e] = ++ncols;
-    add_force(ncols, jt.j, n, p);
-    add_force(ncols, jt.i, -n, p);
+    const Vec2 n = m.normal(ep), x = 0.5 * (m.pos(jt.i, ep.X) + m.pos(jt.j, ep.X));
+    p.fn_col[e] = ++p.ncols;
+    add_force(p.ncols, jt.j, n, x);
+    add_force(p.ncols, jt.i, -n, x);
     if (m.sliding_row(e)) {  // the joint's shear acts along its line, at any of its points
-      ft_col[ep.joint] = ++ncols;
-      add_force(ncols, jt.j, perp(n), p);
-      add_force(ncols, jt.i, -perp(n), p);
-      joints_in_contact.push_back(ep.joint);
+      p.ft_col[ep.joint] = ++p.ncols;
+      add_force(p.ncols, jt.j, perp(n), x);
+      add_force(p.ncols, jt.i, -perp(n), x);
+      p.joints_in_contact.push_back(ep.joint);
     }
   }
-  if (ncols == 0 || nrows_eq == 0) return;
-  glp_add_cols(lp, ncols);
-  for (int j = 1; j <= ncols; ++j) glp_set_col_bnds(lp, j, GLP_LO, 0, 0);
-  for (int jt : joints_in_contact) glp_set_col_bnds(lp, ft_col[jt], GLP_FR, 0, 0);
-  glp_add_rows(lp, nrows_eq + 2 * static_cast<int>(joints_in_contact.size()));
-  const std::vector<double> f = generalised_loads(m);
-  for (int r = 1; r <= nrows_eq; ++r) glp_set_row_bnds(lp, r, GLP_FX, -f[r], -f[r]);
-  for (size_t q = 0; q < joints_in_contact.size(); ++q)
-    for (int s = 0; s < 2; ++s) glp_set_row_bnds(lp, nrows_eq + 2 * static_cast<int>(q) + 1 + s, GLP_UP, 0, 0);
-  glp_load_matrix(lp, static_cast<int>(ia.size()) - 1, ia.data(), ja.data(), ar.data());
+  p.loads = generalised_loads(m);
+  return p;
+}
 
-  std::vector<int> ind;
-  std::vector<double> val;
-  auto set_mu = [&](double mu) {
-    for (size_t q = 0; q < joints_in_contact.size(); ++q) {
-      const int jt = joints_in_contact[q];
-      for (int s = 0; s < 2; ++s) {
-        ind.assign(1, 0);
-        val.assign(1, 0.0);
-        ind.push_back(ft_col[jt]), val.push_back(s == 0 ? 1.0 : -1.0);
-        for (int c = 0; c < 2; ++c)
-          if (fn_col[2 * jt + c]) ind.push_back(fn_col[2 * jt + c]), val.push_back(-mu);
-        glp_set_mat_row(lp, nrows_eq + 2 * static_cast<int>(q) + 1 + s, static_cast<int>(ind.size()) - 1, ind.data(),
-                        val.data());
-      }
-    }
-  };
-  glp_smcp parm;
-  glp_init_smcp(&parm);
-  parm.msg_lev = GLP_MSG_OFF;
-  parm.it_lim = 1000 + 50 * (glp_get_num_rows(lp) + ncols);
-  bool fresh = true;
-  auto feasible = [&](double mu) {
-    set_mu(mu);
-    if (fresh) glp_std_basis(lp), fresh = false;
-    ++S.solves;
-    int rc = glp_simplex(lp, &parm);
-    if (rc != 0) {  // a stalled warm start: once more from the standard basis
-      glp_std_basis(lp);
-      rc = glp_simplex(lp, &parm);
-    }
-    return rc == 0 && glp_get_status(lp) == GLP_OPT;
-  };
-  // The binding joint of a feasible state: the largest |T|/N.
-  auto binding = [&]() {
-    int best = -1;
-    double worst = -1;
-    for (int jt : joints_in_contact) {
-      double N = 0;
-      for (int c = 0; c < 2; ++c)
-        if (fn_col[2 * jt + c]) N += glp_get_col_prim(lp, fn_col[2 * jt + c]);
-      const double T = std::abs(glp_get_col_prim(lp, ft_col[jt]));
-      const double ratio = N > 0 ? T / N : (T > 0 ? 1e300 : 0);
-      if (ratio > worst) worst = ratio, best = jt;
-    }
-    return best;
-  };
+// The binding joint of the last feasible state: the largest |T|/N.
+int binding_joint(const SlidingLp& S, const FrictionProblem& p) {
+  int best = -1;
+  double worst = -1;
+  for (int jt : p.joints_in_contact) {
+    double N = 0;
+    for (int c = 0; c < 2; ++c)
+      if (p.fn_col[2 * jt + c]) N += friction_col_value(S, p.fn_col[2 * jt + c]);
+    const double T = std::abs(friction_col_value(S, p.ft_col[jt]));
+    const double ratio = N > 0 ? T / N : (T > 0 ? 1e300 : 0);
+    if (ratio > worst) worst = ratio, best = jt;
+  }
+  return best;
+}
+
+}  // namespace
+
+void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec) {
+  const auto [demand, demand_joint] = demand_of(rec);
+  const FrictionProblem p = friction_problem(m);
+  if (p.ncols == 0 || p.nrows_eq == 0) return;
+  load_friction_lp(S, p);
+  auto feasible = [&](double mu) { return friction_feasible(S, p, mu); };
 
   // Where the force state is unique (a mechanism leaves the moving part statically
   // determinate) no state does better than the dual one: one LP just below its demand shows it.
@@ -119,12 +91,12 @@ void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec) {
     bool ok = false;
     for (int widen = 0; !(ok = feasible(hi)) && widen < 20; ++widen) hi = std::max(2 * hi, 1e-3);
     if (!ok) return;  // no admissible state found: leave the field out rather than guess
-    required_joint = binding();
+    required_joint = binding_joint(S, p);
     while (std::atan(hi) - std::atan(lo) > resolution) {
       const double mid = 0.5 * (lo + hi);
       if (feasible(mid)) {
         hi = mid;
-        required_joint = binding();
+        required_joint = binding_joint(S, p);
       } else {
         lo = mid;
       }
@@ -132,7 +104,6 @@ void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec) {
   }
   rec.sliding = SlidingCheck{demand * kDeg, demand_joint, std::atan(hi) * kDeg, required_joint};
 }
-
 
 }  // namespace masonry::prd_detail
 
