@@ -1,8 +1,8 @@
 #include <exception>
 #include <iostream>
 
-#include "case.hpp"
-#include "command.hpp"
+#include "model/case.hpp"
+#include "app/command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"masonry: PRD limit analysis and rigid-block DEM of masonry structures, side by side"};

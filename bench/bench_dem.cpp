@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "case.hpp"
-#include "dem.hpp"
+#include "model/case.hpp"
+#include "dem/dem.hpp"
 
 namespace {
 

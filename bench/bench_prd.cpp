@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "case.hpp"
-#include "prd.hpp"
+#include "model/case.hpp"
+#include "prd/prd.hpp"
 
 namespace {
 

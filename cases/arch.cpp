@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "generators.hpp"
+#include "cases/generators.hpp"
 
 namespace masonry {
 

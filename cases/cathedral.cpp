@@ -35,7 +35,7 @@
 #include <cstdio>
 #include <string>
 
-#include "generators.hpp"
+#include "cases/generators.hpp"
 
 namespace masonry {
 

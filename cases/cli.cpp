@@ -7,11 +7,11 @@
 #include <iostream>
 #include <memory>
 
-#include "command.hpp"
-#include "dxf.hpp"
-#include "generators.hpp"
-#include "show.hpp"
-#include "results.hpp"
+#include "app/command.hpp"
+#include "cases/dxf.hpp"
+#include "cases/generators.hpp"
+#include "cases/show.hpp"
+#include "model/results.hpp"
 
 namespace masonry {
 

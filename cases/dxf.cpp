@@ -1,7 +1,7 @@
 // import_dxf, as named stages: read the drawing (dxflib), turn polylines into polygons in metres
 // (units, arcs by chords), name the blocks and give them their layer's properties, snap drafting
 // gaps, assemble the case (with the merged fragment) and check it with the case loader.
-#include "dxf.hpp"
+#include "cases/dxf.hpp"
 
 #include <dxflib/dl_creationadapter.h>
 #include <dxflib/dl_dxf.h>
@@ -18,7 +18,7 @@
 #include <optional>
 #include <sstream>
 
-#include "interfaces.hpp"
+#include "model/interfaces.hpp"
 
 namespace masonry {
 

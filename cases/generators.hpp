@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "case.hpp"
+#include "model/case.hpp"
 
 namespace masonry {
 

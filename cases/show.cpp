@@ -1,12 +1,12 @@
 // case_svg: the case as the solvers will get it, drawn: blocks with their ids, supports hatched,
 // the joints the loader detected, the point loads and the support motion.
-#include "show.hpp"
+#include "cases/show.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "interfaces.hpp"
+#include "model/interfaces.hpp"
 
 namespace masonry {
 

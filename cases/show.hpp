@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "case.hpp"
+#include "model/case.hpp"
 
 namespace masonry {
 

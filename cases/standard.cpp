@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "generators.hpp"
+#include "cases/generators.hpp"
 
 namespace masonry {
 

@@ -8,12 +8,12 @@
 #include <optional>
 #include <sstream>
 
-#include "command.hpp"
-#include "compare.hpp"
-#include "dem.hpp"
-#include "generators.hpp"
-#include "prd.hpp"
-#include "report.hpp"
+#include "app/command.hpp"
+#include "compare/compare.hpp"
+#include "dem/dem.hpp"
+#include "cases/generators.hpp"
+#include "prd/prd.hpp"
+#include "compare/report.hpp"
 
 namespace masonry {
 

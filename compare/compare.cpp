@@ -1,4 +1,4 @@
-#include "compare.hpp"
+#include "compare/compare.hpp"
 
 #include <algorithm>
 #include <cmath>

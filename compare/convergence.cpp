@@ -1,11 +1,11 @@
-#include "convergence.hpp"
+#include "compare/convergence.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "format.hpp"
-#include "report.hpp"
+#include "compare/format.hpp"
+#include "compare/report.hpp"
 
 namespace masonry {
 

@@ -1,4 +1,4 @@
-#include "report.hpp"
+#include "compare/report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <random>
 #include <sstream>
 
-#include "format.hpp"
-#include "svg.hpp"
+#include "compare/format.hpp"
+#include "compare/svg.hpp"
 
 namespace masonry {
 

@@ -1,6 +1,6 @@
-#include "svg.hpp"
+#include "compare/svg.hpp"
 
-#include "format.hpp"
+#include "compare/format.hpp"
 
 #include <algorithm>
 #include <cmath>

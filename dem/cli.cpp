@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <mutex>
 
-#include "command.hpp"
-#include "convergence.hpp"
-#include "dem.hpp"
-#include "interfaces.hpp"
-#include "prd.hpp"
-#include "variants.hpp"
+#include "app/command.hpp"
+#include "compare/convergence.hpp"
+#include "dem/dem.hpp"
+#include "model/interfaces.hpp"
+#include "prd/prd.hpp"
+#include "dem/variants.hpp"
 
 namespace masonry {
 

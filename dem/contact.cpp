@@ -1,4 +1,4 @@
-#include "contact.hpp"
+#include "dem/contact.hpp"
 
 #include <box2d/b2_common.h>
 #include <box2d/b2_settings.h>

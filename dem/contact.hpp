@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-#include "case.hpp"
+#include "model/case.hpp"
 
 namespace masonry::dem {
 

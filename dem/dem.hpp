@@ -10,9 +10,9 @@
 #include <optional>
 #include <vector>
 
-#include "case.hpp"
-#include "interfaces.hpp"
-#include "results.hpp"
+#include "model/case.hpp"
+#include "model/interfaces.hpp"
+#include "model/results.hpp"
 
 namespace masonry {
 

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "contact.hpp"
-#include "dem.hpp"
+#include "dem/contact.hpp"
+#include "dem/dem.hpp"
 
 namespace masonry {
 

@@ -1,4 +1,4 @@
-#include "protocol.hpp"
+#include "dem/protocol.hpp"
 
 #include <cmath>
 #include <sstream>

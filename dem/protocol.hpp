@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "dem.hpp"
+#include "dem/dem.hpp"
 
 namespace masonry::dem {
 

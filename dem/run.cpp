@@ -7,9 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "dem.hpp"
-#include "io.hpp"
-#include "protocol.hpp"
+#include "dem/dem.hpp"
+#include "model/io.hpp"
+#include "dem/protocol.hpp"
 
 namespace masonry {
 

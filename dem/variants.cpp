@@ -1,4 +1,4 @@
-#include "variants.hpp"
+#include "dem/variants.hpp"
 
 #include <algorithm>
 #include <atomic>

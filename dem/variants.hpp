@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "dem.hpp"
+#include "dem/dem.hpp"
 
 namespace masonry {
 

@@ -1,4 +1,4 @@
-#include "case.hpp"
+#include "model/case.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <set>
 #include <sstream>
 
-#include "interfaces.hpp"
-#include "io.hpp"
+#include "model/interfaces.hpp"
+#include "model/io.hpp"
 
 namespace masonry {
 

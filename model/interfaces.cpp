@@ -1,4 +1,4 @@
-#include "interfaces.hpp"
+#include "model/interfaces.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "case.hpp"
+#include "model/case.hpp"
 
 namespace masonry {
 

@@ -1,4 +1,4 @@
-#include "io.hpp"
+#include "model/io.hpp"
 
 #include <time.h>
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "case.hpp"
-#include "io.hpp"
+#include "model/case.hpp"
+#include "model/io.hpp"
 
 namespace masonry {
 

@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "case.hpp"
-#include "interfaces.hpp"
+#include "model/case.hpp"
+#include "model/interfaces.hpp"
 
 namespace masonry {
 

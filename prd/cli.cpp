@@ -3,8 +3,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "command.hpp"
-#include "prd.hpp"
+#include "app/command.hpp"
+#include "prd/prd.hpp"
 
 namespace masonry {
 

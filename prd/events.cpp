@@ -1,6 +1,6 @@
 // Event location for adaptive runs: where a corner closes on a move, where a basis stops being
 // optimal, where a closed corner's force reaches zero.
-#include "internal.hpp"
+#include "prd/internal.hpp"
 
 namespace masonry::prd_detail {
 

@@ -1,4 +1,4 @@
-#include "glpk_hooks.hpp"
+#include "prd/glpk_hooks.hpp"
 
 #include <glpk.h>
 

@@ -14,10 +14,10 @@
 #include <optional>
 #include <vector>
 
-#include "case.hpp"
-#include "interfaces.hpp"
-#include "prd.hpp"
-#include "results.hpp"
+#include "model/case.hpp"
+#include "model/interfaces.hpp"
+#include "prd/prd.hpp"
+#include "model/results.hpp"
 
 namespace masonry::prd_detail {
 

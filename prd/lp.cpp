@@ -14,7 +14,7 @@
 
 #include <stdexcept>
 
-#include "internal.hpp"
+#include "prd/internal.hpp"
 
 namespace masonry::prd_detail {
 

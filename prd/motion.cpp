@@ -1,6 +1,6 @@
 // Finite rigid motion along a mechanism, the gaps it gives, the contact state and the
 // configuration records.
-#include "internal.hpp"
+#include "prd/internal.hpp"
 
 namespace masonry::prd_detail {
 

@@ -3,8 +3,8 @@
 // The LP itself (variables and rows) is described at the top of lp.cpp.
 #include <stdexcept>
 
-#include "glpk_hooks.hpp"
-#include "internal.hpp"
+#include "prd/glpk_hooks.hpp"
+#include "prd/internal.hpp"
 
 namespace masonry {
 

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <utility>
 
-#include "internal.hpp"
+#include "prd/internal.hpp"
 
 namespace masonry::prd_detail {
 

@@ -2,8 +2,8 @@
 // ranks; otherwise they go to local threads and MPI is never initialised.
 #include <memory>
 
-#include "command.hpp"
-#include "sweep.hpp"
+#include "app/command.hpp"
+#include "sweep/sweep.hpp"
 
 namespace masonry {
 

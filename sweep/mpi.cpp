@@ -11,7 +11,7 @@
 #include <iostream>
 #include <thread>
 
-#include "runner.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 

@@ -7,10 +7,10 @@
 #include <limits>
 #include <sstream>
 
-#include "format.hpp"
-#include "report.hpp"
-#include "svg.hpp"
-#include "sweep.hpp"
+#include "compare/format.hpp"
+#include "compare/report.hpp"
+#include "compare/svg.hpp"
+#include "sweep/sweep.hpp"
 
 namespace masonry {
 

@@ -11,9 +11,9 @@
 #include <sstream>
 #include <thread>
 
-#include "dem.hpp"
-#include "prd.hpp"
-#include "runner.hpp"
+#include "dem/dem.hpp"
+#include "prd/prd.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "sweep.hpp"
+#include "sweep/sweep.hpp"
 
 namespace masonry::sweep_detail {
 

@@ -8,9 +8,9 @@
 #include <set>
 #include <sstream>
 
-#include "generators.hpp"
-#include "io.hpp"
-#include "sweep.hpp"
+#include "cases/generators.hpp"
+#include "model/io.hpp"
+#include "sweep/sweep.hpp"
 
 namespace masonry {
 

@@ -5,7 +5,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "sweep.hpp"
+#include "sweep/sweep.hpp"
 
 namespace masonry {
 

@@ -6,8 +6,8 @@
 #include <optional>
 #include <sstream>
 
-#include "command.hpp"
-#include "tradeoff.hpp"
+#include "app/command.hpp"
+#include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
 

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io.hpp"
-#include "tradeoff.hpp"
+#include "model/io.hpp"
+#include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
 

@@ -9,10 +9,10 @@
 #include <set>
 #include <sstream>
 
-#include "format.hpp"
-#include "report.hpp"
-#include "svg.hpp"
-#include "tradeoff.hpp"
+#include "compare/format.hpp"
+#include "compare/report.hpp"
+#include "compare/svg.hpp"
+#include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
 

@@ -8,10 +8,10 @@
 #include <limits>
 #include <sstream>
 
-#include "compare.hpp"
-#include "dem.hpp"
-#include "prd.hpp"
-#include "tradeoff.hpp"
+#include "compare/compare.hpp"
+#include "dem/dem.hpp"
+#include "prd/prd.hpp"
+#include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
 

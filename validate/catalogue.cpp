@@ -1,5 +1,5 @@
 // Reading and checking a masonry-catalogue/1 file, and building each benchmark's case.
-#include "catalogue.hpp"
+#include "validate/catalogue.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -7,8 +7,8 @@
 #include <set>
 #include <sstream>
 
-#include "generators.hpp"
-#include "io.hpp"
+#include "cases/generators.hpp"
+#include "model/io.hpp"
 
 namespace masonry {
 

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "case.hpp"
+#include "model/case.hpp"
 
 namespace masonry {
 

@@ -6,9 +6,9 @@
 #include <memory>
 #include <set>
 
-#include "command.hpp"
-#include "results.hpp"
-#include "validate.hpp"
+#include "app/command.hpp"
+#include "model/results.hpp"
+#include "validate/validate.hpp"
 
 namespace masonry {
 

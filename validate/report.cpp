@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <sstream>
 
-#include "format.hpp"
-#include "report.hpp"  // md_escape
-#include "validate.hpp"
+#include "compare/format.hpp"
+#include "compare/report.hpp"  // md_escape
+#include "validate/validate.hpp"
 
 namespace masonry {
 

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "dem.hpp"
-#include "prd.hpp"
-#include "validate.hpp"
+#include "dem/dem.hpp"
+#include "prd/prd.hpp"
+#include "validate/validate.hpp"
 
 namespace masonry {
 

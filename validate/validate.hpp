@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "catalogue.hpp"
-#include "results.hpp"
+#include "validate/catalogue.hpp"
+#include "model/results.hpp"
 
 namespace masonry {
 

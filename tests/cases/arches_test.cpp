@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "case_checks.hpp"
-#include "generators.hpp"
+#include "cases/generators.hpp"
 
 namespace masonry {
 namespace {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "case.hpp"
-#include "interfaces.hpp"
+#include "model/case.hpp"
+#include "model/interfaces.hpp"
 
 namespace masonry::test {
 

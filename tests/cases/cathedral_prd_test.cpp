@@ -3,8 +3,8 @@
 // in reports/).
 #include <gtest/gtest.h>
 
-#include "generators.hpp"
-#include "prd.hpp"
+#include "cases/generators.hpp"
+#include "prd/prd.hpp"
 
 namespace masonry {
 namespace {

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "case_checks.hpp"
-#include "generators.hpp"
+#include "cases/generators.hpp"
 
 namespace masonry {
 namespace {

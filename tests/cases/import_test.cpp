@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "common.hpp"
-#include "dem.hpp"
-#include "dxf.hpp"
-#include "generators.hpp"
-#include "prd.hpp"
-#include "show.hpp"
+#include "dem/dem.hpp"
+#include "cases/dxf.hpp"
+#include "cases/generators.hpp"
+#include "prd/prd.hpp"
+#include "cases/show.hpp"
 
 namespace masonry {
 namespace {

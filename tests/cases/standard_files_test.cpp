@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "case_checks.hpp"
-#include "generators.hpp"
+#include "cases/generators.hpp"
 
 namespace masonry {
 namespace {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "compare.hpp"
-#include "prd.hpp"
+#include "compare/compare.hpp"
+#include "prd/prd.hpp"
 
 namespace masonry {
 namespace {

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "common.hpp"
-#include "compare.hpp"
-#include "prd.hpp"
-#include "report.hpp"
+#include "compare/compare.hpp"
+#include "prd/prd.hpp"
+#include "compare/report.hpp"
 
 namespace masonry {
 namespace {

@@ -8,9 +8,9 @@
 #include <map>
 #include <set>
 
-#include "dem.hpp"
-#include "generators.hpp"
-#include "prd.hpp"
+#include "dem/dem.hpp"
+#include "cases/generators.hpp"
+#include "prd/prd.hpp"
 #include "util.hpp"
 
 namespace {

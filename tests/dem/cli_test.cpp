@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "case.hpp"
-#include "generators.hpp"
+#include "model/case.hpp"
+#include "cases/generators.hpp"
 
 namespace {
 

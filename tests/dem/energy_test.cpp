@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "dem.hpp"
+#include "dem/dem.hpp"
 #include "util.hpp"
 
 namespace {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "dem.hpp"
+#include "dem/dem.hpp"
 #include "util.hpp"
 
 namespace {

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "contact.hpp"
-#include "dem.hpp"
+#include "dem/contact.hpp"
+#include "dem/dem.hpp"
 #include "util.hpp"
 
 namespace {

@@ -8,12 +8,12 @@
 #include <cmath>
 
 #include "common.hpp"
-#include "convergence.hpp"
-#include "dem.hpp"
-#include "prd.hpp"
-#include "protocol.hpp"
+#include "compare/convergence.hpp"
+#include "dem/dem.hpp"
+#include "prd/prd.hpp"
+#include "dem/protocol.hpp"
 #include "util.hpp"
-#include "variants.hpp"
+#include "dem/variants.hpp"
 
 namespace {
 

@@ -3,8 +3,8 @@
 // drift.
 #include <gtest/gtest.h>
 
-#include "dem.hpp"
-#include "prd.hpp"
+#include "dem/dem.hpp"
+#include "prd/prd.hpp"
 #include "util.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "dem.hpp"
+#include "dem/dem.hpp"
 #include "util.hpp"
 
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <functional>
 
-#include "case.hpp"
-#include "dem.hpp"
-#include "generators.hpp"
+#include "model/case.hpp"
+#include "dem/dem.hpp"
+#include "cases/generators.hpp"
 
 namespace masonry::test {
 

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "case.hpp"
-#include "interfaces.hpp"
+#include "model/case.hpp"
+#include "model/interfaces.hpp"
 
 namespace masonry {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "case.hpp"
-#include "results.hpp"
+#include "model/case.hpp"
+#include "model/results.hpp"
 
 namespace masonry::testing {
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "generators.hpp"
-#include "prd.hpp"
+#include "cases/generators.hpp"
+#include "prd/prd.hpp"
 
 namespace masonry {
 namespace {

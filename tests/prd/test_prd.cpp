@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "generators.hpp"
+#include "cases/generators.hpp"
 #include "helpers.hpp"
-#include "prd.hpp"
+#include "prd/prd.hpp"
 
 namespace masonry {
 namespace {

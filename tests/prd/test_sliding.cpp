@@ -6,8 +6,8 @@
 #include <cmath>
 #include <string>
 
-#include "case.hpp"
-#include "prd.hpp"
+#include "model/case.hpp"
+#include "prd/prd.hpp"
 
 namespace masonry {
 namespace {

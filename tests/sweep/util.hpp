@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "case.hpp"
+#include "model/case.hpp"
 #include "common.hpp"
-#include "sweep.hpp"
+#include "sweep/sweep.hpp"
 
 namespace masonry::test {
 

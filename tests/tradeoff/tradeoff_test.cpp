@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "common.hpp"
-#include "tradeoff.hpp"
+#include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
 namespace {

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common.hpp"
-#include "validate.hpp"
+#include "validate/validate.hpp"
 
 namespace masonry {
 namespace {
