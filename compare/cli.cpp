@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/command.hpp"
+#include "app/flags.hpp"
 #include "compare/compare.hpp"
 #include "dem/dem.hpp"
 #include "cases/generators.hpp"
@@ -23,8 +24,8 @@ struct CompareOpts {
   std::string case_path, out_dir, tolerances;
   std::vector<double> frictions;
   std::vector<std::string> runs;  // existing result directories instead of running
-  std::optional<double> step, dem_step, reduction, factor, hold, move_time, damping;
-  std::optional<int> max_steps;
+  CaseFlags settings;               // the flags that set case options, for both methods
+  std::optional<double> dem_step;  // motion.step of the DEM runs only
   int frames = 0;
   bool quiet = false;
 };
@@ -39,14 +40,8 @@ std::string num_text(double x) {
 std::string command_line(const CompareOpts& o, const std::string& case_shown) {
   std::string s = "masonry compare " + case_shown + " --out " + o.out_dir;
   for (double f : o.frictions) s += " --friction " + num_text(f);
-  if (o.step) s += " --step " + num_text(*o.step);
+  s += o.settings.command_line();
   if (o.dem_step) s += " --dem-step " + num_text(*o.dem_step);
-  if (o.max_steps) s += " --max-steps " + std::to_string(*o.max_steps);
-  if (o.reduction) s += " --stiffness-reduction " + num_text(*o.reduction);
-  if (o.factor) s += " --timestep-factor " + num_text(*o.factor);
-  if (o.hold) s += " --hold-time " + num_text(*o.hold);
-  if (o.move_time) s += " --move-time " + num_text(*o.move_time);
-  if (o.damping) s += " --damping " + num_text(*o.damping);
   if (!o.tolerances.empty()) s += " --tolerances " + o.tolerances;
   if (!o.runs.empty()) {
     s += " --runs";
@@ -88,9 +83,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       for (size_t q = 0; q < runs.size(); ++q) runs[q].label += " " + std::filesystem::path(o.runs[q]).filename().string();
   } else {
     results.reserve(1 + std::max<size_t>(1, o.frictions.size()));
-    PrdSettings ps = PrdSettings::from_case(c);
-    if (o.step) ps.step = *o.step;
-    if (o.max_steps) ps.max_steps = *o.max_steps;
+    const PrdSettings ps = PrdSettings::from_case(c);
     const std::string prd_dir = o.out_dir + "/prd";
     progress(o.quiet, "compare: PRD on " + c.name + " ...\n");
     results.push_back(prd_run(c, ps, {}));
@@ -99,17 +92,9 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     runs.push_back({"PRD", nullptr, "prd"});
     std::vector<double> phis = o.frictions;
     if (phis.empty()) phis.push_back(c.dem.friction_angle);
+    const Case dem_case = o.dem_step ? with_option(c, "motion.step", *o.dem_step) : c;
     for (double phi : phis) {
-      DemSettings ds = DemSettings::from_case(c);
-      ds.friction_angle = phi;
-      if (o.step) ds.step = *o.step;
-      if (o.dem_step) ds.step = *o.dem_step;
-      if (o.max_steps) ds.max_steps = *o.max_steps;
-      if (o.reduction) ds.stiffness_reduction = *o.reduction;
-      if (o.factor) ds.timestep_factor = *o.factor;
-      if (o.hold) ds.hold_time = *o.hold;
-      if (o.move_time) ds.move_time = *o.move_time;
-      if (o.damping) ds.damping = *o.damping;
+      const DemSettings ds = DemSettings::from_case(with_option(dem_case, "dem.friction_angle", phi));
       const std::string sub = phis.size() == 1 ? "dem" : "dem-phi" + num_text(phi);
       const std::string dir = o.out_dir + "/" + sub;
       progress(o.quiet, "compare: DEM (friction " + num_text(phi) + " deg) on " + c.name + " ...\n");
@@ -148,14 +133,15 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
 }
 
 void add_common_options(CLI::App* sub, CompareOpts& o) {
-  sub->add_option("--step", o.step, "Increment of d for both methods, m (default: the case's motion.step)")->check(CLI::PositiveNumber);
-  sub->add_option("--max-steps", o.max_steps, "Largest number of steps for both methods (default: the case's)")->check(CLI::NonNegativeNumber);
+  using K = CaseFlags::Kind;
+  o.settings.add(sub, "--step", "motion.step", K::number, "Increment of d for both methods, m");
+  o.settings.add(sub, "--max-steps", "motion.max_steps", K::integer, "Largest number of steps for both methods");
   sub->add_option("--dem-step", o.dem_step, "DEM increment of d only, m (default: --step)")->check(CLI::PositiveNumber);
-  sub->add_option("--stiffness-reduction", o.reduction, "DEM: divide kn and ks by this (the paper used 10 for the arch)")->check(CLI::PositiveNumber);
-  sub->add_option("--timestep-factor", o.factor, "DEM: time step / critical time step bound, (0, 1]")->check(CLI::PositiveNumber);
-  sub->add_option("--hold-time", o.hold, "DEM: model-time budget of each hold, s")->check(CLI::PositiveNumber);
-  sub->add_option("--move-time", o.move_time, "DEM: model time to travel one increment, s")->check(CLI::PositiveNumber);
-  sub->add_option("--damping", o.damping, "DEM: local damping coefficient in [0, 1)");
+  o.settings.add(sub, "--stiffness-reduction", "dem.stiffness_reduction", K::number, "DEM: divide kn and ks by this (the paper used 10 for the arch)");
+  o.settings.add(sub, "--timestep-factor", "dem.timestep_factor", K::number, "DEM: time step / critical time step bound, (0, 1]");
+  o.settings.add(sub, "--hold-time", "dem.hold_time", K::number, "DEM: model-time cap of each hold, s");
+  o.settings.add(sub, "--move-time", "dem.move_time", K::number, "DEM: model time to travel one increment at constant speed, s (0: the servo)");
+  o.settings.add(sub, "--damping", "dem.damping", K::number, "DEM: local damping coefficient in [0, 1)");
   sub->add_option("--frames", o.frames, "Slider positions in report.html (default 60, 24 for scenes over 60 blocks)")->check(CLI::NonNegativeNumber);
   sub->add_option("--tolerances", o.tolerances, "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true}: exit code 1 when one is exceeded");
   sub->add_flag("--quiet", o.quiet, "No progress lines");
@@ -173,7 +159,7 @@ void add_compare_commands(CLI::App& app, Commands& out) {
     sub->add_option("--runs", o->runs, "Compare finished runs instead of running: result directories (each with results.json), the first is the reference");
     add_common_options(sub, *o);
     out.push_back({sub, [o]() {
-                     const Case c = load_case(o->case_path);
+                     const Case c = o->settings.apply(load_case(o->case_path));
                      return run_compare(c, *o, o->case_path);
                    }});
   }
@@ -188,10 +174,9 @@ void add_compare_commands(CLI::App& app, Commands& out) {
                      // The standard case as the paper ran it: 1 mm increments, friction 35 deg and
                      // the joint stiffnesses divided by 10 (its Section 3.3), which is what brings
                      // the DEM under a minute (about 40 s here; undivided it takes a few times longer).
-                     const Case c = standard_case("pointed-arch");
-                     o->reduction = 10.0;
+                     const Case c = with_option(standard_case("pointed-arch"), "dem.stiffness_reduction", 10.0);
                      o->frictions = {35.0};
-                     const int rc = run_compare(c, *o, "(built-in pointed-arch)");
+                     const int rc = run_compare(c, *o, "(built-in pointed-arch, dem.stiffness_reduction 10)");
                      std::cout << "Report: " << o->out_dir << "/report.html (open it in a browser) and " << o->out_dir << "/report.md\n";
                      return rc;
                    }});

@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "app/command.hpp"
+#include "app/flags.hpp"
 #include "compare/convergence.hpp"
 #include "dem/dem.hpp"
 #include "model/interfaces.hpp"
@@ -19,10 +20,8 @@ namespace {
 
 struct Opts {
   std::string case_path, out_dir;
-  std::optional<double> friction, reduction, damping, factor, eq_tol, vel_tol, hold, step, move_time, ramp, drift, open_gap, kinetic,
-      bracket;
-  std::optional<int> max_steps;
-  bool quiet = false, convergence = false, confirm = false;
+  CaseFlags settings;  // the flags that set case options
+  bool quiet = false, convergence = false;
   int jobs = 2;
   double spread_limit = 0.02, prd_limit = 0.03;
 };
@@ -81,24 +80,26 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   CLI::App* sub = app.add_subcommand("dem", "Rigid-block DEM capacity run (explicit, Mohr-Coulomb joints)");
   sub->add_option("case", o->case_path, "Case file (masonry-case/1 JSON)")->required();
   sub->add_option("--out", o->out_dir, "Output directory for results.json and steps.csv")->required();
-  sub->add_option("--friction", o->friction, "Friction angle, degrees (case: dem.friction_angle, default 35)");
-  sub->add_option("--stiffness-reduction", o->reduction, "Divide kn and ks by this (case default 1; the paper used 10)");
-  sub->add_option("--damping", o->damping, "Local damping coefficient in [0, 1) (default 0.8)");
-  sub->add_option("--timestep-factor", o->factor, "Time step / critical time step bound, in (0, 1] (default 0.8)");
-  sub->add_option("--equilibrium-tolerance", o->eq_tol, "Largest unbalanced force / block weight at equilibrium (default 1e-4)");
-  sub->add_option("--velocity-tolerance", o->vel_tol, "Largest block speed at equilibrium, m/s (default 1e-5)");
-  sub->add_option("--hold-time", o->hold, "Model-time cap of one hold, s: a hold that neither settles nor runs away by then is undecided (default 30)");
-  sub->add_option("--step", o->step, "Increment of the support path parameter d, m (case: motion.step)");
-  sub->add_option("--max-steps", o->max_steps, "Number of increments at most (case: motion.max_steps)");
-  sub->add_option("--kinetic-ratio", o->kinetic, "Moves keep the kinetic energy below this x total weight x increment (default 1e-3)");
-  sub->add_option("--move-time", o->move_time, "Constant-speed move over this model time per increment, s, instead of the kinetic-energy servo (default 0: servo)");
-  sub->add_option("--bracket-fraction", o->bracket, "Bisect a failed increment down to this fraction of the step (default 0.01; 0: no bisection)");
-  sub->add_flag("--confirm-collapse", o->confirm,
-                "Confirm a located collapse by the short move from the bracket's last equilibrium; a failure it does not reproduce "
-                "becomes an equilibrium and the run goes on (dem/README.md, stage 4; off by default)");
-  sub->add_option("--ramp-fraction", o->ramp, "Fraction of the move time spent speeding up (and slowing down), 0..0.5 (default 0.25; 0: abrupt)");
-  sub->add_option("--collapse-drift", o->drift, "Block travel within an unsettled hold that means collapse, m (default 2% of scene)");
-  sub->add_option("--open-gap", o->open_gap, "Gap above which a joint corner is open, m (default prd.contact_tolerance)");
+  using K = CaseFlags::Kind;
+  CaseFlags& f = o->settings;
+  f.add(sub, "--friction", "dem.friction_angle", K::number, "Friction angle, degrees (default 35)");
+  f.add(sub, "--stiffness-reduction", "dem.stiffness_reduction", K::number, "Divide kn and ks by this (default 1; the paper used 10)");
+  f.add(sub, "--damping", "dem.damping", K::number, "Local damping coefficient in [0, 1) (default 0.8)");
+  f.add(sub, "--timestep-factor", "dem.timestep_factor", K::number, "Time step / critical time step bound, in (0, 1] (default 0.8)");
+  f.add(sub, "--equilibrium-tolerance", "dem.equilibrium_tolerance", K::number, "Largest unbalanced force / block weight at equilibrium (default 1e-4)");
+  f.add(sub, "--velocity-tolerance", "dem.velocity_tolerance", K::number, "Largest block speed at equilibrium, m/s (default 1e-5)");
+  f.add(sub, "--hold-time", "dem.hold_time", K::number, "Model-time cap of one hold, s: a hold that neither settles nor runs away by then is undecided (default 30)");
+  f.add(sub, "--step", "motion.step", K::number, "Increment of the support path parameter d, m");
+  f.add(sub, "--max-steps", "motion.max_steps", K::integer, "Number of increments at most");
+  f.add(sub, "--kinetic-ratio", "dem.kinetic_ratio", K::number, "Moves keep the kinetic energy below this x total weight x increment (default 1e-3)");
+  f.add(sub, "--move-time", "dem.move_time", K::number, "Constant-speed move over this model time per increment, s, instead of the kinetic-energy servo (default 0: servo)");
+  f.add(sub, "--bracket-fraction", "dem.bracket_fraction", K::number, "Bisect a failed increment down to this fraction of the step (default 0.01; 0: no bisection)");
+  f.add(sub, "--confirm-collapse", "dem.confirm_collapse", K::flag,
+        "Confirm a located collapse by the short move from the bracket's last equilibrium; a failure it does not reproduce "
+        "becomes an equilibrium and the run goes on (dem/README.md, stage 4; off by default)");
+  f.add(sub, "--ramp-fraction", "dem.ramp_fraction", K::number, "Fraction of the move time spent speeding up (and slowing down), 0..0.5 (default 0.25; 0: abrupt)");
+  f.add(sub, "--collapse-drift", "dem.collapse_drift", K::number, "Block travel within an unsettled hold that means collapse, m (default 2% of scene)");
+  f.add(sub, "--open-gap", "dem.open_gap", K::number, "Gap growth above which a joint corner is open, m (default prd.contact_tolerance)");
   sub->add_flag("--quiet", o->quiet, "No progress lines");
   sub->add_flag("--convergence", o->convergence,
                 "Convergence study: the run at these settings and at settings that must not matter (dem/README.md), "
@@ -107,24 +108,8 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   sub->add_option("--spread-limit", o->spread_limit, "Convergence study: largest (max - min) / default capacity (default 0.02)");
   sub->add_option("--prd-limit", o->prd_limit, "Convergence study: largest |default - PRD| / PRD capacity (default 0.03)");
   out.push_back({sub, [o]() {
-                   const Case c = load_case(o->case_path);
-                   DemSettings s = DemSettings::from_case(c);
-                   if (o->friction) s.friction_angle = *o->friction;
-                   if (o->reduction) s.stiffness_reduction = *o->reduction;
-                   if (o->damping) s.damping = *o->damping;
-                   if (o->factor) s.timestep_factor = *o->factor;
-                   if (o->eq_tol) s.equilibrium_tolerance = *o->eq_tol;
-                   if (o->vel_tol) s.velocity_tolerance = *o->vel_tol;
-                   if (o->hold) s.hold_time = *o->hold;
-                   if (o->step) s.step = *o->step;
-                   if (o->max_steps) s.max_steps = *o->max_steps;
-                   if (o->move_time) s.move_time = *o->move_time;
-                   if (o->kinetic) s.kinetic_ratio = *o->kinetic;
-                   if (o->bracket) s.bracket_fraction = *o->bracket;
-                   if (o->confirm) s.confirm_collapse = true;
-                   if (o->ramp) s.ramp_fraction = *o->ramp;
-                   if (o->drift) s.collapse_drift = *o->drift;
-                   if (o->open_gap) s.open_gap = *o->open_gap;
+                   const Case c = o->settings.apply(load_case(o->case_path));
+                   const DemSettings s = DemSettings::from_case(c);
                    if (!o->quiet) warn_dem_cost(c, s);
                    if (o->convergence) return run_convergence(c, s, *o);
                    const RunResult r = dem_run(c, s, [&](const RunResult& part) {

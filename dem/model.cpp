@@ -71,6 +71,8 @@ DemSettings DemSettings::from_case(const Case& c) {
   s.collapse_drift = c.dem.collapse_drift;
   s.kinetic_ratio = c.dem.kinetic_ratio;
   s.bracket_fraction = c.dem.bracket_fraction;
+  if (c.dem.open_gap) s.open_gap = *c.dem.open_gap;
+  s.confirm_collapse = c.dem.confirm_collapse;
   s.step = c.motion.step;
   s.max_steps = c.motion.max_steps;
   return s;

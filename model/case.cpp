@@ -395,7 +395,8 @@ Case parse_case(const std::string& text, const std::string& source) {
     const json& jd = doc["dem"];
     r.only(jd, "dem", {"young_modulus", "poisson", "friction_angle", "kn", "ks", "stiffness_reduction", "damping",
                        "timestep_factor", "equilibrium_tolerance", "velocity_tolerance", "hold_time",
-                       "kinetic_ratio", "move_time", "ramp_fraction", "collapse_drift", "bracket_fraction"});
+                       "kinetic_ratio", "move_time", "ramp_fraction", "collapse_drift", "bracket_fraction", "open_gap",
+                       "confirm_collapse"});
     DemOptions& d = c.dem;
     d.young_modulus = r.number(jd, "dem", "young_modulus", d.young_modulus);
     d.poisson = r.number(jd, "dem", "poisson", d.poisson);
@@ -413,6 +414,8 @@ Case parse_case(const std::string& text, const std::string& source) {
     d.bracket_fraction = r.number(jd, "dem", "bracket_fraction", d.bracket_fraction);
     d.ramp_fraction = r.number(jd, "dem", "ramp_fraction", d.ramp_fraction);
     d.collapse_drift = r.number(jd, "dem", "collapse_drift", d.collapse_drift);
+    if (jd.contains("open_gap")) d.open_gap = r.number(jd["open_gap"], "dem", "open_gap");
+    d.confirm_collapse = r.boolean(jd, "dem", "confirm_collapse", d.confirm_collapse);
     r.range(d.young_modulus, 0, kMaxModulus, "dem", "young_modulus", "Pa", true);
     if (!(d.poisson > -1 && d.poisson < 0.5)) r.fail("dem", "field 'poisson' must lie in (-1, 0.5)");
     if (!(d.friction_angle >= 0 && d.friction_angle <= 90)) r.fail("dem", "field 'friction_angle' must lie in [0, 90] degrees");
@@ -429,6 +432,7 @@ Case parse_case(const std::string& text, const std::string& source) {
     if (!(d.bracket_fraction >= 0 && d.bracket_fraction < 1)) r.fail("dem", "field 'bracket_fraction' must lie in [0, 1)");
     if (!(d.ramp_fraction >= 0 && d.ramp_fraction <= 0.5)) r.fail("dem", "field 'ramp_fraction' must lie in [0, 0.5]");
     r.range(d.collapse_drift, 0, kMaxLength, "dem", "collapse_drift", "m (0: 2% of the scene size)");
+    if (d.open_gap) r.range(*d.open_gap, 0, kMaxLength, "dem", "open_gap", "m");
   }
 
   // Orientation: store counter-clockwise.
@@ -518,6 +522,8 @@ std::string case_to_json(const Case& c) {
               {"bracket_fraction", c.dem.bracket_fraction}};
   if (c.dem.kn) dem["kn"] = *c.dem.kn;
   if (c.dem.ks) dem["ks"] = *c.dem.ks;
+  if (c.dem.open_gap) dem["open_gap"] = *c.dem.open_gap;
+  if (c.dem.confirm_collapse) dem["confirm_collapse"] = true;
   doc["dem"] = dem;
   return doc.dump(1, ' ') + "\n";
 }

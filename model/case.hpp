@@ -86,6 +86,12 @@ struct DemOptions {
   double ramp_fraction = 0.25;
   double collapse_drift = 0.0;
   double bracket_fraction = 0.01;
+  // A joint corner whose gap has grown by more than this since the settled start is open, m
+  // (absent: prd.contact_tolerance, so both methods call hinges alike).
+  std::optional<double> open_gap;
+  // Confirm a located collapse by the short move from the bracket's last equilibrium
+  // (dem/README.md, "Protocol", stage 4).
+  bool confirm_collapse = false;
 };
 
 struct Case {

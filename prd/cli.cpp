@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/command.hpp"
+#include "app/flags.hpp"
 #include "prd/prd.hpp"
 
 namespace masonry {
@@ -64,42 +65,31 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     auto* sub = app.add_subcommand("prd", "PRD capacity run: a sequence of LPs until the structure collapses");
     auto path = std::make_shared<std::string>();
     auto dir = std::make_shared<std::string>();
-    auto step = std::make_shared<double>(0.0);
-    auto max_steps = std::make_shared<int>(-1);
-    auto tol = std::make_shared<double>(0.0);
-    auto adaptive = std::make_shared<bool>(false);
-    auto event_tol = std::make_shared<double>(0.0);
-    auto max_step = std::make_shared<double>(0.0);
-    auto sliding = std::make_shared<bool>(false);
+    auto settings = std::make_shared<CaseFlags>();  // the flags that set case options
     auto friction = std::make_shared<double>(-1.0);
     sub->add_option("case", *path, "Case file (JSON, masonry-case/1)")->required();
     sub->add_option("--out", *dir, "Output directory: results.json and steps.csv")->required();
-    sub->add_option("--step", *step, "Increment of d per step, m (default: the case's motion.step)")->check(CLI::PositiveNumber);
-    sub->add_option("--max-steps", *max_steps, "Largest number of steps (default: the case's motion.max_steps)")->check(CLI::NonNegativeNumber);
-    sub->add_option("--tolerance", *tol, "Contact tolerance, m (default: the case's prd.contact_tolerance)")->check(CLI::PositiveNumber);
-    sub->add_flag("--adaptive", *adaptive,
+    using K = CaseFlags::Kind;
+    settings->add(sub, "--step", "motion.step", K::number, "Increment of d per step, m");
+    settings->add(sub, "--max-steps", "motion.max_steps", K::integer, "Largest number of steps");
+    settings->add(sub, "--tolerance", "prd.contact_tolerance", K::number, "Contact tolerance, m");
+    settings->add(sub, "--adaptive", "prd.adaptive", K::flag,
                   "Event-driven steps: long while the mechanism holds, each event located to --event-tolerance");
-    sub->add_option("--event-tolerance", *event_tol,
-                    "With --adaptive: how closely events are located, m (default 1e-4 of the scene size)")
-        ->check(CLI::PositiveNumber);
-    sub->add_option("--max-step", *max_step, "With --adaptive: the longest step, m (default: the smaller of 16 x --step and 0.4 sqrt(event tolerance x scene size), 1/250 of the scene at the default tolerance)")
-        ->check(CLI::PositiveNumber);
-    sub->add_flag("--sliding", *sliding,
+    settings->add(sub, "--event-tolerance", "prd.event_tolerance", K::number,
+                  "With --adaptive: how closely events are located, m (default 1e-4 of the scene size)");
+    settings->add(sub, "--max-step", "prd.max_step", K::number,
+                  "With --adaptive: the longest step, m (default: the smaller of 16 x --step and 0.4 sqrt(event tolerance x scene size), "
+                  "1/250 of the scene at the default tolerance)");
+    settings->add(sub, "--sliding", "prd.sliding_check", K::flag,
                   "Sliding check on every step: friction demand of the joint forces and the least friction angle "
                   "an admissible force state needs (results: extra \"sliding\")");
     sub->add_option("--friction-angle", *friction,
                     "Report the first step and joint where the friction demand exceeds this angle, deg (implies --sliding)")
         ->check(CLI::Range(0.0, 90.0));
     out.push_back({sub, [=]() {
-                     Case c = load_case(*path);
+                     const Case c = settings->apply(load_case(*path));
                      PrdSettings s = PrdSettings::from_case(c);
-                     if (*sliding || *friction >= 0) s.sliding_check = true;
-                     if (*step > 0) s.step = *step;
-                     if (*max_steps >= 0) s.max_steps = *max_steps;
-                     if (*tol > 0) s.contact_tolerance = *tol;
-                     if (*adaptive) s.adaptive = true;
-                     if (*event_tol > 0) s.event_tolerance = *event_tol;
-                     if (*max_step > 0) s.max_step = *max_step;
+                     if (*friction >= 0) s.sliding_check = true;
                      ThrottledWriter w{*dir, &c};
                      warn_lp_cost(c, "prd", 2e-7);
                      Progress progress{};

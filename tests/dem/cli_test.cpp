@@ -84,4 +84,22 @@ TEST(DemCli, RefusesAnUnstableTimeStep) {
   EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
 }
 
+// A flag is the case option of the same meaning (app/flags.hpp): a bad value gets the case
+// loader's one-line refusal naming the option and the field, and a good one reaches the run as
+// the case field would.
+TEST(DemCli, AFlagIsTheCaseOptionItSets) {
+  Dir d;
+  const fs::path c = write_arch(d), err = d.path / "err.txt";
+  EXPECT_EQ(run(c.string() + " --out " + (d.path / "bad").string() + " --damping 1.5", err), 2);
+  const std::string msg = slurp(err);
+  EXPECT_NE(msg.find("[dem.damping=1.5]"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("field 'damping'"), std::string::npos) << msg;
+  EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
+  const fs::path out = d.path / "out";
+  ASSERT_EQ(run(c.string() + " --out " + out.string() + " --max-steps 1 --open-gap 0.002 --quiet", err), 0) << slurp(err);
+  const auto j = nlohmann::json::parse(slurp(out / "results.json"));
+  EXPECT_EQ(j["settings"]["open_gap"].get<double>(), 0.002);
+  EXPECT_EQ(j["settings"]["max_steps"].get<int>(), 1);
+}
+
 }  // namespace

@@ -284,6 +284,14 @@ TEST(WithOption, ChangesOneSettingAndKeepsTheRest) {
   ASSERT_TRUE(e.dem.kn.has_value());
   EXPECT_DOUBLE_EQ(*e.dem.kn, 1e9);
   EXPECT_DOUBLE_EQ(masonry::with_option(c, "motion.step", 0.004).motion.step, 0.004);
+  // The DEM's hinge threshold and stage 4 are options too (flags map onto them), and survive
+  // the file format.
+  const masonry::Case g = masonry::with_option(masonry::with_option(c, "dem.open_gap", 0.002), "dem.confirm_collapse", true);
+  const masonry::Case back = masonry::parse_case(masonry::case_to_json(g), "back.json");
+  ASSERT_TRUE(back.dem.open_gap.has_value());
+  EXPECT_DOUBLE_EQ(*back.dem.open_gap, 0.002);
+  EXPECT_TRUE(back.dem.confirm_collapse);
+  EXPECT_FALSE(c.dem.open_gap.has_value() || c.dem.confirm_collapse);
 }
 
 TEST(WithOption, BadKeysAndValuesGetTheLoadersError) {
@@ -302,6 +310,8 @@ TEST(WithOption, BadKeysAndValuesGetTheLoadersError) {
   EXPECT_NE(message("nosuch.x", 1.0).find("no section 'nosuch'"), std::string::npos);
   EXPECT_NE(message("blocks", 1.0).find("not an option"), std::string::npos);
   EXPECT_NE(message("motion.step", "big").find("step"), std::string::npos);
+  EXPECT_NE(message("dem.open_gap", -1.0).find("field 'open_gap'"), std::string::npos);
+  EXPECT_NE(message("dem.confirm_collapse", 1.0).find("confirm_collapse"), std::string::npos);
 }
 
 namespace masonry {

@@ -1,0 +1,39 @@
+#include "app/flags.hpp"
+
+#include <sstream>
+
+namespace masonry {
+
+void CaseFlags::add(CLI::App* sub, const std::string& name, const std::string& key, Kind kind, const std::string& help) {
+  Flag& f = flags_.emplace_back();
+  f.name = name;
+  f.key = key;
+  f.kind = kind;
+  const std::string text = help + " (case: " + key + ")";
+  switch (kind) {
+    case Kind::number: sub->add_option(name, f.number, text); break;
+    case Kind::integer: sub->add_option(name, f.integer, text); break;
+    case Kind::flag: sub->add_flag(name, f.on, text); break;
+  }
+}
+
+Case CaseFlags::apply(Case c) const {
+  for (const Flag& f : flags_) {
+    if (f.number) c = with_option(c, f.key, *f.number);
+    if (f.integer) c = with_option(c, f.key, *f.integer);
+    if (f.on) c = with_option(c, f.key, true);
+  }
+  return c;
+}
+
+std::string CaseFlags::command_line() const {
+  std::ostringstream o;
+  for (const Flag& f : flags_) {
+    if (f.number) o << " " << f.name << " " << *f.number;
+    if (f.integer) o << " " << f.name << " " << *f.integer;
+    if (f.on) o << " " << f.name;
+  }
+  return o.str();
+}
+
+}  // namespace masonry
