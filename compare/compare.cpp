@@ -142,6 +142,54 @@ std::vector<const StepRecord*> stable_records(const RunResult& r) {
   return out;
 }
 
+namespace {
+
+// The corners of record s open wider than min_gap, by block ids and corner (joint numbers may
+// differ between runs), with their gaps.
+std::map<std::string, double> wide_open(const Case& c, const RunResult& r, const StepRecord& s, double min_gap) {
+  std::map<std::string, double> out;
+  const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
+  for (const OpenCorner& o : s.open_corners) {
+    if (!(o.gap > min_gap) || o.joint < 0 || o.joint >= int(r.joints.size())) continue;
+    const JointInfo& ji = r.joints[o.joint];
+    out[id(ji.i) + "/" + id(ji.j) + ":" + (o.corner == 0 ? "A" : "B")] = o.gap;
+  }
+  return out;
+}
+
+std::vector<std::string> only_in(const std::map<std::string, double>& x, const std::map<std::string, double>& y) {
+  std::vector<std::string> out;
+  for (const auto& [k, gap] : x)
+    if (!y.count(k)) out.push_back(k + " (" + fmt(gap * 1e3, 3) + " mm)");
+  return out;
+}
+
+}  // namespace
+
+std::optional<Parting> hinges_part(const Case& c, const RunResult& a, const RunResult& b, double min_gap) {
+  const std::vector<const StepRecord*> ra = stable_records(a), rb = stable_records(b);
+  if (ra.empty() || rb.empty()) return std::nullopt;
+  const double end = std::min(ra.back()->d, rb.back()->d);
+  std::optional<Parting> p;
+  int apart = 0;  // records since p
+  for (const StepRecord* s : ra) {
+    if (s->d > end) break;
+    const StepRecord* t = record_at(rb, s->d);
+    const auto x = wide_open(c, a, *s, min_gap), y = wide_open(c, b, *t, min_gap);
+    if (x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin(), [](const auto& u, const auto& v) { return u.first == v.first; })) {
+      p.reset();  // together again: an earlier difference was not a parting
+      apart = 0;
+      continue;
+    }
+    if (!p) p = Parting{s->d, only_in(x, y), only_in(y, x)};
+    ++apart;
+  }
+  // A difference at the last record alone is the approach to collapse seen at slightly
+  // different d, not another mechanism.
+  if (apart < 2) return std::nullopt;
+  return p;
+}
+
 std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord& s) {
   std::map<int, std::vector<int>> open;  // joint -> open corners
   for (const OpenCorner& o : s.open_corners) open[o.joint].push_back(o.corner);

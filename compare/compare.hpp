@@ -96,6 +96,17 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
 std::vector<const StepRecord*> stable_records(const RunResult& r);
 // Hinges of one record (joint with exactly one open corner), sorted by joint.
 std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord& s);
+
+// Where two runs' mechanisms part for good: the first record of `a` in the common range from
+// which on the joints open wider than `min_gap` differ from b's (at b's last record at or
+// before the same d) at every record up to the end of the common range. An early difference
+// that closes again (a hinge that opens one increment later in one run) is not a parting, and
+// neither is one at the last record alone (the approach to collapse at slightly different d).
+struct Parting {
+  double d = 0.0;                           // m
+  std::vector<std::string> only_a, only_b;  // "blocks:corner (gap mm)", block ids unescaped
+};
+std::optional<Parting> hinges_part(const Case& c, const RunResult& a, const RunResult& b, double min_gap);
 // d (m) where the set of open corners changes (see CompareOptions::min_state_records).
 std::vector<double> mechanism_changes(const RunResult& r, int min_state_records = 2);
 // Block index -> index of its mirror image about the vertical line through the scene's centre,

@@ -15,6 +15,23 @@ using ojson = nlohmann::ordered_json;
 
 std::string pct(double x) { return fmt::number(100 * x, "%+.2f%%", 100 * x); }
 
+// Where run a's mechanism parts from b's for good (compare.hpp), when the study has the case.
+std::optional<Parting> parting(const Convergence& c, const RunResult& a, const RunResult& b) {
+  if (!c.scene) return std::nullopt;
+  return hinges_part(*c.scene, a, b, 5e-5 * scene_size(*c.scene));
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "none" : s;
+}
+
+ojson parting_json(const std::optional<Parting>& p) {
+  if (!p) return nullptr;
+  return {{"d", p->d}, {"only_this", p->only_a}, {"only_other", p->only_b}};
+}
+
 ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 
 }  // namespace
@@ -75,9 +92,11 @@ ojson convergence_json(const Convergence& c) {
     r["cpu_s"] = e.run.timing.total_s;
     r["cycles"] = e.run.timing.cycles;
     r["message"] = e.run.message;
+    if (c.scene && &e != &c.entries.front()) r["parts_from_default"] = parting_json(parting(c, e.run, c.entries.front().run));
     runs.push_back(r);
   }
   j["runs"] = runs;
+  if (c.scene && c.prd && !c.entries.empty()) j["default_parts_from_prd"] = parting_json(parting(c, c.entries.front().run, *c.prd));
   return j;
 }
 
@@ -105,6 +124,22 @@ std::string convergence_markdown(const Convergence& c) {
     << (std::isfinite(v.spread) ? fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) : std::string("n/a")) << " (limit "
     << fmt::g(100 * c.spread_limit) << "%); default against PRD: " << pct(v.prd_error) << " (limit " << fmt::g(100 * c.prd_limit)
     << "%).\n\n";
+  if (c.scene && !c.entries.empty()) {
+    o << "**Where the mechanisms part** (for good: joints open wider than " << fmt::g(1e3 * 5e-5 * scene_size(*c.scene), 3)
+      << " mm differ from there to the end of the common range):\n\n";
+    auto line = [&](const std::string& who, const std::string& other, const RunResult& a, const RunResult& b) {
+      const std::optional<Parting> p = parting(c, a, b);
+      o << "- " << md_escape(who) << ": ";
+      if (!p)
+        o << "the same open joints as " << md_escape(other) << " to the end of the common range\n";
+      else
+        o << "from d = " << fmt::number(p->d, "%.4f", p->d) << " m, open only here: " << md_escape(joined(p->only_a))
+          << "; only in " << md_escape(other) << ": " << md_escape(joined(p->only_b)) << "\n";
+    };
+    if (c.prd) line("default", "PRD", c.entries.front().run, *c.prd);
+    for (size_t k = 1; k < c.entries.size(); ++k) line(c.entries[k].name, "the default", c.entries[k].run, c.entries.front().run);
+    o << "\n";
+  }
   if (v.ok)
     o << "**Converged**: every run located its collapse and the capacities agree within the limits.\n";
   else {

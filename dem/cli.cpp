@@ -33,8 +33,9 @@ int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
   study.case_name = c.name;
   study.spread_limit = o.spread_limit;
   study.prd_limit = o.prd_limit;
-  const RunResult prd = prd_run(c, PrdSettings::from_case(c), {});
-  if (located(prd.status)) study.prd_capacity = prd.capacity;
+  study.scene = &c;
+  study.prd = prd_run(c, PrdSettings::from_case(c), {});
+  if (located(study.prd->status)) study.prd_capacity = study.prd->capacity;
   const std::vector<DemVariant> variants = convergence_variants(base);
   std::mutex io;
   const std::vector<RunResult> runs = run_variants(

@@ -172,6 +172,45 @@ TEST(Compare, RunStatusReadsBackAndAnUnknownOneIsRefused) {
   }
 }
 
+// Two runs part where their open joints differ for good; a joint that opens one record later in
+// one run is a difference that closes again, not a parting.
+TEST(Compare, HingesPartWhereTheyDifferForGood) {
+  const RunResult& base = arch_prd();
+  ASSERT_GE(base.joints.size(), 3u);
+  auto run = [&](const std::vector<std::vector<OpenCorner>>& open) {
+    RunResult r;
+    r.joints = base.joints;
+    r.status = RunStatus::collapse;
+    for (size_t k = 0; k < open.size(); ++k) {
+      StepRecord s;
+      s.index = int(k);
+      s.d = 0.1 * double(k);
+      s.open_corners = open[k];
+      r.steps.push_back(s);
+    }
+    r.capacity = r.steps.back().d;
+    return r;
+  };
+  const OpenCorner j1{0, 0, 2e-3}, j2{1, 1, 3e-3}, j3{2, 1, 4e-3}, tiny{2, 0, 1e-5};
+  const RunResult a = run({{}, {j1}, {j1, tiny}, {j1, j2}, {j1, j2}});
+  const RunResult b = run({{}, {}, {j1}, {j1, j3}, {j1, j3}});
+  const std::optional<Parting> p = hinges_part(arch(), a, b, 1e-4);
+  ASSERT_TRUE(p);
+  EXPECT_NEAR(p->d, 0.3, 1e-12);
+  const auto name = [&](const OpenCorner& o) {
+    const JointInfo& ji = base.joints[o.joint];
+    return arch().blocks[ji.i].id + "/" + arch().blocks[ji.j].id + (o.corner == 0 ? ":A" : ":B");
+  };
+  ASSERT_EQ(p->only_a.size(), 1u);
+  ASSERT_EQ(p->only_b.size(), 1u);
+  EXPECT_EQ(p->only_a[0].rfind(name(j2), 0), 0u) << p->only_a[0];
+  EXPECT_EQ(p->only_b[0].rfind(name(j3), 0), 0u) << p->only_b[0];
+  EXPECT_FALSE(hinges_part(arch(), a, a, 1e-4));      // a run does not part from itself
+  EXPECT_FALSE(hinges_part(arch(), a, b, 5e-3));      // nothing open that wide
+  // A difference at the last record alone is the approach to collapse, not a parting.
+  EXPECT_FALSE(hinges_part(arch(), run({{}, {j1}, {j1, j2}}), run({{}, {j1}, {j1}}), 1e-4));
+}
+
 TEST(Compare, MissingNumbersAreNullNotNaN) {
   RunResult b = arch_prd();
   b.capacity = std::numeric_limits<double>::quiet_NaN();
