@@ -6,7 +6,19 @@
 #include <functional>
 #include <vector>
 
+#include "model/results.hpp"
+
 namespace masonry {
+
+// The exit codes of every command (README, "Commands"):
+//   0  finished: every run located its answer (a collapse or the end of the path) and every
+//      check asked for (tolerances, limits, benchmarks) passed;
+//   1  finished, but some run ended without an answer (error or undecided: its results.json
+//      says why) or a check failed;
+//   2  refused or stopped before any result: bad input or options, named on one line of stderr.
+constexpr int kExitDone = 0, kExitFailed = 1, kExitRefused = 2;
+// A run's exit code: 0 when it located its answer, 1 otherwise.
+inline int exit_code(RunStatus s) { return located(s) ? kExitDone : kExitFailed; }
 
 struct Command {
   CLI::App* app = nullptr;

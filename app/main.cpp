@@ -46,9 +46,9 @@ int main(int argc, char** argv) {
       for (char& ch : msg)
         if (ch == '\n') ch = ' ';
       std::cerr << "masonry " << c.app->get_name() << ": " << masonry::printable(msg, 2000) << "\n";
-      return 2;
+      return masonry::kExitRefused;
     }
   }
   std::cerr << "masonry: no command given (see --help)\n";
-  return 2;
+  return masonry::kExitRefused;
 }

@@ -118,7 +118,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
   rep.frames = o.frames;
   write_report(o.out_dir, rep);
   bool failed = false, errored = false;
-  for (const RunResult& r : results) errored = errored || r.status == RunStatus::error;
+  for (const RunResult& r : results) errored = errored || !located(r.status);
   for (size_t k = 0; k < rep.comparisons.size(); ++k) {
     const Comparison& cmp = rep.comparisons[k];
     std::fprintf(stderr, "compare: %s: %s %.4g m, %s %.4g m (%+.1f%%), thrust difference max %.3g W rms %.3g W, times %.3g s / %.3g s\n",
@@ -128,8 +128,8 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     failed = failed || !rep.violations[k].empty();
   }
   std::cerr << "compare: report in " << o.out_dir << "/report.html and " << o.out_dir << "/report.md\n";
-  if (errored) std::cerr << "compare: a run stopped with an error (see its results.json)\n";
-  return failed || errored ? 1 : 0;
+  if (errored) std::cerr << "compare: a run ended without a located answer (an error, or undecided: see its results.json)\n";
+  return failed || errored ? kExitFailed : kExitDone;
 }
 
 void add_common_options(CLI::App* sub, CompareOpts& o) {

@@ -56,7 +56,7 @@ int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
   write_file_atomic((std::filesystem::path(o.out_dir) / "convergence.md").string(), md);
   const ConvergenceVerdict v = judge(study);
   if (!o.quiet) std::fprintf(stderr, "dem convergence: %s (%s)\n", v.ok ? "converged" : "NOT shown converged", (std::filesystem::path(o.out_dir) / "convergence.md").c_str());
-  return v.ok ? 0 : 1;
+  return v.ok ? kExitDone : kExitFailed;
 }
 
 // Warns before a run whose time step makes each second of model time expensive (very stiff
@@ -130,9 +130,8 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                      std::fprintf(stderr, "dem: %s, capacity %.6g m after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n",
                                   status_name(r.status), r.capacity, r.stable_steps, r.timing.cycles, r.timing.total_s,
                                   r.settings.value("dt", 0.0));
-                   if (r.status == RunStatus::error) throw std::runtime_error(r.message);
-                   if (r.status == RunStatus::undecided) std::fprintf(stderr, "dem: %s\n", r.message.c_str());
-                   return 0;
+                   if (!located(r.status)) std::fprintf(stderr, "dem: %s\n", r.message.c_str());
+                   return exit_code(r.status);
                  }});
 }
 

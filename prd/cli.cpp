@@ -122,7 +122,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                            std::cerr << "at no step\n";
                        }
                      }
-                     return r.status == RunStatus::error ? 1 : 0;
+                     return exit_code(r.status);
                    }});
   }
   {

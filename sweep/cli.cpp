@@ -27,8 +27,8 @@ void add_sweep_commands(CLI::App& app, Commands& out) {
                    if (started_by_mpirun()) return run_sweep_mpi(opts->spec, o);
                    const SweepTable t = run_sweep(read_sweep_input(opts->spec), o);
                    for (const auto& r : t)
-                     if (r && !located(*r)) return 1;
-                   return 0;
+                     if (r && !located(*r)) return kExitFailed;
+                   return kExitDone;
                  }});
 }
 

@@ -152,7 +152,7 @@ int run_tradeoff_command(const TradeoffOpts& o) {
   bool ref_failed = false;
   for (const Row& r : t.rows) ref_failed = ref_failed || (r.reference && !r.ok());
   if (ref_failed) std::cerr << "tradeoff: a reference run did not finish: its method's errors are n/a\n";
-  return ref_failed ? 1 : 0;
+  return ref_failed ? kExitFailed : kExitDone;
 }
 
 }  // namespace

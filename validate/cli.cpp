@@ -81,7 +81,7 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                    if (!failures.empty()) std::cout << "\n" << failures;
                    if (!o->markdown.empty()) write_file_atomic(o->markdown, validation_markdown(cat, rows, command_line(*o)));
                    for (const ValidationRow& r : rows)
-                     if (!r.pass) return 1;
+                     if (!r.pass) return kExitFailed;
                    return 0;
                  }});
 }

@@ -84,6 +84,18 @@ TEST(DemCli, RefusesAnUnstableTimeStep) {
   EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << msg;
 }
 
+// The exit-code policy (README, "Commands"): a run that ends without a located answer exits 1,
+// after writing its results with the reason; bad options exit 2 (above).
+TEST(DemCli, ARunWithoutAnAnswerExitsOne) {
+  Dir d;
+  const fs::path c = write_arch(d), out = d.path / "out", err = d.path / "err.txt";
+  // A hold far too short to settle the arch under gravity: neither settled nor ran away.
+  EXPECT_EQ(run(c.string() + " --out " + out.string() + " --hold-time 0.001", err), 1) << slurp(err);
+  const auto j = nlohmann::json::parse(slurp(out / "results.json"));
+  EXPECT_EQ(j["stopped"], "undecided");
+  EXPECT_FALSE(j["message"].get<std::string>().empty());
+}
+
 // A flag is the case option of the same meaning (app/flags.hpp): a bad value gets the case
 // loader's one-line refusal naming the option and the field, and a good one reaches the run as
 // the case field would.
