@@ -40,7 +40,6 @@ struct Attempt {
   double lag() const { return move_drift > 0 ? hold.drift / move_drift : 0.0; }
 };
 
-
 // The run: the model and its limits, where the loading stands, and the results as they grow.
 struct Run {
   const Case& c;
