@@ -15,10 +15,14 @@ using ojson = nlohmann::ordered_json;
 
 std::string pct(double x) { return fmt::number(100 * x, "%+.2f%%", 100 * x); }
 
+// A joint counts in the partings when it is open wider than this fraction of the scene: a gap a
+// drawing of the mechanism shows, well above the elastic gaps of settling under gravity.
+constexpr double kOpenOfScene = 5e-5;
+
 // Where run a's mechanism parts from b's for good (compare.hpp), when the study has the case.
 std::optional<Parting> parting(const Convergence& c, const RunResult& a, const RunResult& b) {
   if (!c.scene) return std::nullopt;
-  return hinges_part(*c.scene, a, b, 5e-5 * scene_size(*c.scene));
+  return hinges_part(*c.scene, a, b, kOpenOfScene * scene_size(*c.scene));
 }
 
 std::string joined(const std::vector<std::string>& v) {
@@ -125,7 +129,7 @@ std::string convergence_markdown(const Convergence& c) {
     << fmt::g(100 * c.spread_limit) << "%); default against PRD: " << pct(v.prd_error) << " (limit " << fmt::g(100 * c.prd_limit)
     << "%).\n\n";
   if (c.scene && !c.entries.empty()) {
-    o << "**Where the mechanisms part** (for good: joints open wider than " << fmt::g(1e3 * 5e-5 * scene_size(*c.scene), 3)
+    o << "**Where the mechanisms part** (for good: joints open wider than " << fmt::g(1e3 * kOpenOfScene * scene_size(*c.scene), 3)
       << " mm differ from there to the end of the common range):\n\n";
     auto line = [&](const std::string& who, const std::string& other, const RunResult& a, const RunResult& b) {
       const std::optional<Parting> p = parting(c, a, b);
