@@ -58,6 +58,33 @@ struct Progress {
   }
 };
 
+// `masonry check --step H [--hold CORNER ...]`.
+int print_first_step(const Case& c, double tol, double h, const std::vector<std::string>& held, bool as_json) {
+  const FirstStep f = prd_first_step(c, tol, h, held);
+  nlohmann::ordered_json j;
+  j["case"] = c.name;
+  j["step"] = h;
+  j["held_closed"] = held;
+  j["bounded"] = f.bounded;
+  if (f.bounded) {
+    j["energy_change"] = f.energy_change;
+    j["opening"] = nlohmann::ordered_json::array();
+    for (const FirstStep::Opening& o : f.opening) j["opening"].push_back({{"corner", o.corner}, {"opening", o.opening}});
+  }
+  if (as_json) {
+    std::cout << j.dump(1) << "\n";
+    return kExitDone;
+  }
+  if (!f.bounded) {
+    std::cout << printable(c.name) << ": unbounded: the structure collapses at d = 0\n";
+    return kExitDone;
+  }
+  std::cout << printable(c.name) << ": a first step of " << h << " m changes the loads' potential energy by " << f.energy_change
+            << " J; it opens:\n";
+  for (const FirstStep::Opening& o : f.opening) std::cout << "  " << printable(o.corner) << "  " << o.opening * 1e3 << " mm\n";
+  return kExitDone;
+}
+
 }  // namespace
 
 void add_prd_commands(CLI::App& app, Commands& out) {
@@ -133,9 +160,18 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     sub->add_option("case", *path, "Case file (JSON, masonry-case/1)")->required();
     sub->add_flag("--json", *as_json, "Print one JSON object (stable, forces, reactions)");
     sub->add_option("--tolerance", *tol, "Contact tolerance, m (default: the case's prd.contact_tolerance)")->check(CLI::PositiveNumber);
+    auto step = std::make_shared<double>(0.0);
+    auto held = std::make_shared<std::vector<std::string>>();
+    sub->add_option("--step", *step,
+                    "Instead: the run's first LP, the mechanism the support motion over this step (m) drives from the start, the "
+                    "potential energy it releases and the corners it opens")
+        ->check(CLI::PositiveNumber);
+    sub->add_option("--hold", *held, "With --step: keep this joint corner closed (BLOCK/BLOCK:A or :B, as --step lists them); repeatable")
+        ->needs("--step");
     out.push_back({sub, [=]() {
                      Case c = load_case(*path);
                      warn_lp_cost(c, "check", 1.2e-7);
+                     if (*step > 0) return print_first_step(c, *tol > 0 ? *tol : c.prd.contact_tolerance, *step, *held, *as_json);
                      const PrdCheck k = prd_check(c, *tol > 0 ? *tol : c.prd.contact_tolerance);
                      RunResult r;
                      r.method = "prd";

@@ -169,6 +169,7 @@ double objective(const Model& m);        // of the last solve, in LP units
 double col_value(const Model& m, int j);  // column j's primal value (1-based)
 double corner_force(const Model& m, size_t e);  // dual of corner e's no-penetration row, N
 double corner_slack(const Model& m, size_t e);  // primal minus bound of that row, LP units
+void hold_closed(Model& m, size_t e);            // corner e's no-penetration row made an equality
 void read_forces(const Model& m, StepRecord& rec);
 std::vector<double> slacks(const Model& m, double scale);
 nlohmann::ordered_json collapse_mechanism(Model& m, double scale);

@@ -181,6 +181,11 @@ LpStatus solve(Model& m) {
 
 void quiet_adv_basis(Model& m) { quiet_adv_basis(m.lp.get()); }
 double objective(const Model& m) { return glp_get_obj_val(m.lp.get()); }
+void hold_closed(Model& m, size_t e) {
+  const int row = 2 * static_cast<int>(e) + 1;
+  const double lb = glp_get_row_lb(m.lp.get(), row);
+  glp_set_row_bnds(m.lp.get(), row, GLP_FX, lb, lb);
+}
 double col_value(const Model& m, int j) { return glp_get_col_prim(m.lp.get(), j); }
 double corner_force(const Model& m, size_t e) { return glp_get_row_dual(m.lp.get(), 2 * static_cast<int>(e) + 1); }
 double corner_slack(const Model& m, size_t e) {

@@ -47,6 +47,22 @@ struct PrdCheck {
 };
 PrdCheck prd_check(const Case& c, double contact_tolerance);
 
+// The run's first LP: the mechanism the prescribed support motion over one step h drives from
+// the initial configuration, with the corners named in `held_closed` ("BLOCK/BLOCK:A" or ":B",
+// the joint's blocks in the order the results name them) kept closed. Comparing the potential
+// energy it releases with and without a hinge held closed measures how near the next-best
+// mechanism is (dem/README.md, "Branches"). Throws std::runtime_error naming an unknown corner.
+struct FirstStep {
+  bool bounded = false;        // false: the structure collapses at d = 0 (the LP is unbounded)
+  double energy_change = 0.0;  // J: potential energy of the loads over the step (negative: released)
+  struct Opening {
+    std::string corner;        // "BLOCK/BLOCK:A"
+    double opening = 0.0;      // m, over the step
+  };
+  std::vector<Opening> opening;  // the corners the step opens by more than 1e-6 of h
+};
+FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, const std::vector<std::string>& held_closed = {});
+
 // The capacity run. `on_step` is called after every finished step (and once at the start, for
 // the initial configuration) with the result so far, so the caller can write it as it goes.
 RunResult prd_run(const Case& c, const PrdSettings& s,

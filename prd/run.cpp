@@ -365,6 +365,38 @@ void take(Walk& w, const Solved& sv, const Step& st, RunResult& r) {
 
 }  // namespace
 
+FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, const std::vector<std::string>& held_closed) {
+  prd::install_glpk_hooks();
+  if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("prd: the step must be a positive number");
+  Model m = build_model(c, contact_tolerance);
+  auto name = [&](size_t e) {
+    const Interface& jt = m.joints[m.ends[e].joint];
+    return c.blocks[jt.i].id + "/" + c.blocks[jt.j].id + (m.ends[e].corner == 0 ? ":A" : ":B");
+  };
+  // As the run's first step: the LP for a step h, open corners (none at the start) over h.
+  update_lp(m, h, h, h);
+  if (m.ncols > 0) quiet_adv_basis(m);
+  for (const std::string& want : held_closed) {
+    bool found = false;
+    for (size_t e = 0; e < m.ends.size(); ++e)
+      if (name(e) == want) hold_closed(m, e), found = true;
+    if (!found) throw std::runtime_error(c.source + ": no joint corner '" + printable(want) + "' (names as BLOCK/BLOCK:A, the blocks in the results' order)");
+  }
+  FirstStep out;
+  const LpStatus st = m.ncols == 0 ? LpStatus::optimal : solve(m);
+  if (st == LpStatus::infeasible) throw std::runtime_error(c.source + ": the first step's LP is infeasible (the held corners cannot all stay closed)");
+  out.bounded = st == LpStatus::optimal;
+  if (!out.bounded) return out;
+  // The columns are the increments over the step in units of h: the objective is the loads'
+  // potential energy change per unit of h.
+  out.energy_change = objective(m) * h;
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    const double opening = corner_slack(m, e) * h;
+    if (opening > 1e-6 * h) out.opening.push_back({name(e), opening});
+  }
+  return out;
+}
+
 RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(const RunResult&)>& on_step) {
   prd::install_glpk_hooks();
   if (!(s.step > 0) || !std::isfinite(s.step)) throw std::invalid_argument("prd: the step must be a positive number");

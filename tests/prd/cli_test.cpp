@@ -106,6 +106,25 @@ TEST(Cli, CheckPrintsOneJsonObject) {
   EXPECT_FALSE(j["forces"].empty());
 }
 
+// `check --step`: the run's first LP. The block rides on the ground tilting about (-2, -0.5):
+// at first order its centroid (0.25, 0.5) rises by h (0.25 + 2) per radian, so the loads'
+// potential energy changes by W x 2.25 h, W = 2000 x 9.81 x 0.5 N, and no corner opens (tipping
+// about either corner would lift the centroid more or push a corner into the ground).
+TEST(Cli, CheckStepGivesTheFirstStepsMechanismAndEnergy) {
+  const fs::path c = write_case("block.json", kBlock);
+  const double h = 0.01, W = 2000.0 * 9.81 * 0.5;
+  const CmdResult r = run("check " + c.string() + " --step 0.01 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["bounded"].get<bool>());
+  EXPECT_NEAR(j["energy_change"].get<double>(), W * 2.25 * h, 1e-9 * W);
+  EXPECT_TRUE(j["opening"].empty()) << j["opening"].dump();
+  const CmdResult bad = run("check " + c.string() + " --step 0.01 --hold ground/nosuch:A");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("ground/nosuch:A"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
 TEST(Cli, BadCaseIsOneLineNamingBlockAndField) {
   std::string bad = kBlock;
   bad.replace(bad.find("\"density\": 2000.0"), 17, "\"density\": -1");
