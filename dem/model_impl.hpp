@@ -1,0 +1,97 @@
+// Internal to dem/: the simulator's state (DemModel::Impl) and the small helpers its two files
+// share. model.cpp builds it and runs the cycle; observe.cpp reads it (energies, records,
+// snapshots) for DemModel's public accessors.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "dem/contact.hpp"
+#include "dem/dem.hpp"
+
+namespace masonry {
+
+namespace dem_detail {
+
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline Vec2 rotate(const Vec2& v, double c, double s) { return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y()); }
+inline Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }  // omega x r for unit omega
+
+struct PointState {
+  int key = -1;          // feature id: reference edge, incident edge, flip, end of the incident edge
+  double fn = 0, fs = 0;  // N: normal (compression) and shear along perp(normal), on body B
+  double area = 0;       // m^2
+  double overlap = 0;    // m
+  Vec2 point{0, 0};
+  Vec2 normal{0, 0};     // A -> B
+};
+
+struct Pair {
+  int pa = -1, pb = -1;  // pieces, pa < pb
+  int ba = -1, bb = -1;  // their blocks
+  int n = 0;             // points in contact
+  PointState pt[2];
+  // The separating-axis decisions of the last cycle, reused while provably unchanged, and the
+  // largest distance between a vertex of pa and one of pb while they are candidates (m).
+  dem::SatCache sat;
+  double lever = 0;
+};
+
+}  // namespace dem_detail
+
+struct DemModel::Impl {
+  using Pair = dem_detail::Pair;
+  const Case& c;
+  DemSettings s;
+  double kn = 0, ks = 0, tan_phi = 0, dt_crit = 0, dt = 0, time = 0, margin = 0, open_gap = 0;
+  long long cycles = 0, rebuilds = 0;
+  double d_target = 0, d_now = 0;
+
+  // Blocks (contiguous arrays, case order).
+  int nb = 0;
+  std::vector<char> support;
+  std::vector<double> mass, inertia, wref, gyr, rmax, depth;
+  std::vector<Vec2> c0, pos, vel, force;
+  std::vector<double> ang, spin, torque;
+  std::vector<double> cs, sn;  // cos and sin of ang, once per cycle for all pieces of the block
+  // Motion of the last cycle: |dx| + |dth| rmax, and |dth|; they bound how far the contact
+  // decisions cached in the pairs can have drifted (dem::collide_cached).
+  std::vector<double> moved, turned;
+  bool rebuild_due = false;  // some block has moved half the margin since the last rebuild
+  std::vector<Vec2> pos_rb;  // at the last broad-phase rebuild
+  std::vector<double> ang_rb;
+  std::vector<int> motion_of;  // index into c.motion.supports, or -1
+
+  // Pieces: local vertices relative to the block centroid in the initial orientation.
+  std::vector<int> piece_block, piece_off, piece_cnt;
+  std::vector<Vec2> local_v, local_n, world_v, world_n;
+
+  std::vector<int> load_block;
+  std::vector<Vec2> load_force, load_r;
+
+  std::vector<Pair> pairs;
+  std::vector<int> scratch;
+
+  // Diagnostics of the last cycle (the contact ones are summed from `pairs` on demand).
+  double unbalanced = INFINITY, speed = INFINITY, ke = 0;
+  double support_work = 0;  // J, done on the blocks by the moving supports since the start
+
+  Impl(const Case& cs, const DemSettings& st) : c(cs), s(st) {}
+
+  // Setup, in this order.
+  void setup();
+  void check_settings() const;
+  void build_blocks();     // blocks' arrays, convex pieces, dead loads
+  void set_time_step();    // joint stiffnesses, the critical time step, dt
+
+  void place_support(int b, double d, Vec2& x, double& th) const;
+  void transform_pieces(bool all);
+  void rebuild();
+  // One cycle: its stages, in this order (each a loop of its own over contiguous arrays).
+  void step();
+  void body_forces();     // gravity and the dead loads
+  void contact_forces();  // narrow phase and the joint law, on both blocks of each pair
+  void integrate();       // supports to their prescribed pose; free blocks by damped central differences
+};
+
+}  // namespace masonry
