@@ -36,7 +36,10 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 times=()
 for ((i = 1; i <= runs; i++)); do
-  taskset -c "$core" "$exe" dem "$case_file" --out "$out/run$i" --quiet "$@"
+  # Exit code 1 is a finished run without a located capacity (undecided): still timed.
+  rc=0
+  taskset -c "$core" "$exe" dem "$case_file" --out "$out/run$i" --quiet "$@" || rc=$?
+  [ "$rc" -le 1 ] || exit "$rc"
   line=$(python3 - "$out/run$i/results.json" <<'EOF'
 import json, sys
 r = json.load(open(sys.argv[1]))
