@@ -1,4 +1,5 @@
 #include "compare/compare.hpp"
+#include "model/interfaces.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -148,11 +149,10 @@ namespace {
 // differ between runs), with their gaps.
 std::map<std::string, double> wide_open(const Case& c, const RunResult& r, const StepRecord& s, double min_gap) {
   std::map<std::string, double> out;
-  const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
   for (const OpenCorner& o : s.open_corners) {
     if (!(o.gap > min_gap) || o.joint < 0 || o.joint >= int(r.joints.size())) continue;
     const JointInfo& ji = r.joints[o.joint];
-    out[id(ji.i) + "/" + id(ji.j) + ":" + (o.corner == 0 ? "A" : "B")] = o.gap;
+    out[corner_name(c, ji.i, ji.j, o.corner)] = o.gap;
   }
   return out;
 }
@@ -203,8 +203,7 @@ std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord
     h.j = ji.j;
     h.corner = 1 - corners[0];
     h.point = h.corner == 0 ? ji.a : ji.b;
-    const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
-    h.label = id(ji.i) + "/" + id(ji.j) + ":" + (h.corner == 0 ? "A" : "B");
+    h.label = corner_name(c, ji.i, ji.j, h.corner);
     out.push_back(h);
   }
   return out;

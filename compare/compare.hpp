@@ -30,7 +30,7 @@ struct Hinge {
   int joint = -1;        // index into the run's joints
   int i = -1, j = -1;    // the joint's blocks
   int corner = 0;        // the closed corner: 0 = A, 1 = B
-  std::string label;     // "v3/v4 A" (block ids: case text, escape before display)
+  std::string label;     // "v3/v4:A", corner_name (block ids: case text, escape before display)
   Vec2 point{0, 0};      // the closed corner, initial configuration
 };
 

@@ -64,6 +64,11 @@ bool edge_pair(const Edge& e, const Edge& f, double tol, Interface& out) {
 
 }  // namespace
 
+std::string corner_name(const Case& c, int i, int j, int corner) {
+  const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
+  return id(i) + "/" + id(j) + (corner == 0 ? ":A" : ":B");
+}
+
 std::vector<Interface> detect_interfaces(const Case& c, double tol) {
   // Sweep along the longer axis of the scene.
   Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);

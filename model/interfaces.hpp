@@ -2,6 +2,7 @@
 // Found once, in the initial configuration; both methods name joints by them.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "model/case.hpp"
@@ -21,6 +22,10 @@ struct Interface {
 // the longer axis of the scene pairs edges, so the cost is far below quadratic for real scenes.
 // The order is deterministic: by (i, j), then along the tangent.
 std::vector<Interface> detect_interfaces(const Case& c, double tol);
+
+// A joint corner's name, "BLOCK/BLOCK:A" (the joint's blocks i and j, corner 0 = A, 1 = B; an
+// index outside the case reads "?"), as reports print it and `masonry check --hold` takes it.
+std::string corner_name(const Case& c, int i, int j, int corner);
 
 // Geometry predicates shared by validation and detection.
 bool point_in_polygon(const Vec2& p, const std::vector<Vec2>& poly);

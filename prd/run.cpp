@@ -371,7 +371,7 @@ FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, cons
   Model m = build_model(c, contact_tolerance);
   auto name = [&](size_t e) {
     const Interface& jt = m.joints[m.ends[e].joint];
-    return c.blocks[jt.i].id + "/" + c.blocks[jt.j].id + (m.ends[e].corner == 0 ? ":A" : ":B");
+    return corner_name(c, jt.i, jt.j, m.ends[e].corner);
   };
   // As the run's first step: the LP for a step h, open corners (none at the start) over h.
   update_lp(m, h, h, h);
