@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "model/interfaces.hpp"
+#include "report/escape.hpp"
 
 namespace masonry {
 

@@ -4,8 +4,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "compare/format.hpp"
 #include "compare/report.hpp"
+#include "report/document.hpp"
+#include "report/format.hpp"
 
 namespace masonry {
 
@@ -13,7 +14,7 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-std::string pct(double x) { return fmt::number(100 * x, "%+.2f%%", 100 * x); }
+std::string pct(double x) { return fmt::pct(x, 2); }
 
 // A joint counts in the partings when it is open wider than this fraction of the scene: a gap a
 // drawing of the mechanism shows, well above the elastic gaps of settling under gravity.
@@ -106,51 +107,52 @@ ojson convergence_json(const Convergence& c) {
 
 std::string convergence_markdown(const Convergence& c) {
   const ConvergenceVerdict v = judge(c);
-  std::ostringstream o;
-  o << "# DEM convergence: " << md_escape(c.case_name) << "\n\n";
-  o << "The same case at the default DEM settings and at settings that must not change a quasi-static answer. "
-       "Capacity: the last equilibrium before the collapse, bracketed (dem/README.md).\n\n";
-  o << "| run | what differs | stopped | capacity (m) | against default | against PRD | bracket (mm) | CPU (s) | cycles |\n";
-  o << "|---|---|---|---|---|---|---|---|---|\n";
+  Document d;
+  d.title = "DEM convergence: " + c.case_name;
+  d.paragraph({"The same case at the default DEM settings and at settings that must not change a quasi-static answer. "
+               "Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
+  Table t;
+  t.head = {"run", "what differs", "stopped", "capacity (m)", "against default", "against PRD", "bracket (mm)", "CPU (s)", "cycles"};
+  t.align = {Align::left, Align::left, Align::left, Align::right, Align::right, Align::right, Align::right, Align::right, Align::right};
   const double base = c.entries.empty() ? NAN : c.entries.front().run.capacity;
   for (const ConvergenceEntry& e : c.entries) {
     const bool ok = located(e.run.status);
     const double width = e.run.extra.contains("collapse_bracket") ? e.run.extra["collapse_bracket"]["width"].get<double>() : NAN;
-    o << "| " << md_escape(e.name) << " | " << md_escape(e.what) << " | " << status_name(e.run.status) << " | "
-      << (ok ? fmt::number(e.run.capacity, "%.4f", e.run.capacity) : "n/a") << " | "
-      << (ok && base > 0 ? pct((e.run.capacity - base) / base) : "n/a") << " | "
-      << (ok && c.prd_capacity ? pct((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : "n/a") << " | "
-      << fmt::number(1000 * width, "%.2f", 1000 * width) << " | " << fmt::number(e.run.timing.total_s, "%.1f", e.run.timing.total_s)
-      << " | " << e.run.timing.cycles << " |\n";
+    t.rows.push_back({e.name, e.what, status_name(e.run.status), ok ? fmt::number(e.run.capacity, "%.4f", e.run.capacity) : "n/a",
+                      ok && base > 0 ? pct((e.run.capacity - base) / base) : "n/a",
+                      ok && c.prd_capacity ? pct((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : "n/a", fmt::mm(width, 2),
+                      fmt::number(e.run.timing.total_s, "%.1f", e.run.timing.total_s), std::to_string(e.run.timing.cycles)});
   }
-  o << "\nPRD capacity: " << (c.prd_capacity ? fmt::number(*c.prd_capacity, "%.4f m", *c.prd_capacity) : std::string("not run")) << ".\n\n";
-  o << "Spread (largest minus smallest capacity, over the default's): "
-    << (std::isfinite(v.spread) ? fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) : std::string("n/a")) << " (limit "
-    << fmt::g(100 * c.spread_limit) << "%); default against PRD: " << pct(v.prd_error) << " (limit " << fmt::g(100 * c.prd_limit)
-    << "%).\n\n";
+  d.table(std::move(t));
+  d.paragraph({"PRD capacity: " + (c.prd_capacity ? fmt::number(*c.prd_capacity, "%.4f m", *c.prd_capacity) : std::string("not run")) + "."});
+  d.paragraph({"Spread (largest minus smallest capacity, over the default's): " +
+               (std::isfinite(v.spread) ? fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) : std::string("n/a")) + " (limit " +
+               fmt::g(100 * c.spread_limit) + "%); default against PRD: " + pct(v.prd_error) + " (limit " + fmt::g(100 * c.prd_limit) + "%)."});
   if (c.scene && !c.entries.empty()) {
-    o << "**Where the mechanisms part** (for good: joints open wider than " << fmt::g(1e3 * kOpenOfScene * scene_size(*c.scene), 3)
-      << " mm differ from there to the end of the common range):\n\n";
+    d.paragraph({Cell("Where the mechanisms part", CellStyle::strong),
+                 " (for good: joints open wider than " + fmt::g(1e3 * kOpenOfScene * scene_size(*c.scene), 3) +
+                     " mm differ from there to the end of the common range):"});
+    std::vector<Item> items;
     auto line = [&](const std::string& who, const std::string& other, const RunResult& a, const RunResult& b) {
       const std::optional<Parting> p = parting(c, a, b);
-      o << "- " << md_escape(who) << ": ";
-      if (!p)
-        o << "the same open joints as " << md_escape(other) << " to the end of the common range\n";
-      else
-        o << "from d = " << fmt::number(p->d, "%.4f", p->d) << " m, open only here: " << md_escape(joined(p->only_a))
-          << "; only in " << md_escape(other) << ": " << md_escape(joined(p->only_b)) << "\n";
+      items.push_back({{who + ": " + (!p ? "the same open joints as " + other + " to the end of the common range"
+                                         : "from d = " + fmt::number(p->d, "%.4f", p->d) + " m, open only here: " + joined(p->only_a) +
+                                               "; only in " + other + ": " + joined(p->only_b))},
+                       {}});
     };
     if (c.prd) line("default", "PRD", c.entries.front().run, *c.prd);
     for (size_t k = 1; k < c.entries.size(); ++k) line(c.entries[k].name, "the default", c.entries[k].run, c.entries.front().run);
-    o << "\n";
+    d.list(std::move(items));
   }
-  if (v.ok)
-    o << "**Converged**: every run located its collapse and the capacities agree within the limits.\n";
-  else {
-    o << "**Not shown converged**:\n\n";
-    for (const std::string& p : v.problems) o << "- " << md_escape(p) << "\n";
+  if (v.ok) {
+    d.paragraph({Cell("Converged", CellStyle::strong), ": every run located its collapse and the capacities agree within the limits."});
+  } else {
+    d.paragraph({Cell("Not shown converged", CellStyle::strong), ":"});
+    std::vector<Item> items;
+    for (const std::string& p : v.problems) items.push_back({{p}, {}});
+    d.list(std::move(items));
   }
-  return o.str();
+  return markdown(d);
 }
 
 }  // namespace masonry

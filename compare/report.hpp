@@ -41,14 +41,11 @@ std::vector<Figure> report_figures(const Report& r);
 
 // comparison.json: {"format", "case", "runs", "comparisons": [to_json(k) + "tolerances"]}.
 nlohmann::ordered_json report_json(const Report& r);
+// report.md and report.html hold the same content (one document, two writers); the page inlines
+// the figures and adds a slider through d with `frames` positions (0: chosen from the scene size).
 std::string report_markdown(const Report& r, const std::vector<Figure>& figures);
-// `frames`: how many steps the slider offers (0: chosen from the scene size).
-std::string report_html(const Report& r, int frames = 0);
+std::string report_html(const Report& r, const std::vector<Figure>& figures, int frames = 0);
 // Writes DIR/comparison.json, DIR/report.md, DIR/report.html and DIR/figures/*.svg.
 void write_report(const std::string& dir, const Report& r);
-
-// Text for Markdown: HTML special characters as entities and Markdown punctuation escaped, so a
-// case name can neither inject markup nor break a table.
-std::string md_escape(const std::string& s);
 
 }  // namespace masonry

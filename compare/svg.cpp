@@ -1,6 +1,8 @@
 #include "compare/svg.hpp"
 
-#include "compare/format.hpp"
+#include "report/escape.hpp"
+#include "report/format.hpp"
+#include "report/svg.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,19 +15,13 @@ namespace masonry {
 
 namespace {
 
-// Method colours and support colours (colour-blind safe palette, Okabe-Ito).
-const char* kSupportColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"};
+// Colours of the drawing's elements; supports take report/svg.hpp's series colours.
 const char* kForce = "#1f4fbf";
 const char* kThrustLine = "#c0392b";
 const char* kReaction = "#1a7f37";
 const char* kHinge = "#d62728";
 
-std::string f1(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f", std::isfinite(x) ? x : 0.0);
-  return b;
-}
-std::string mm(double m) { return fmt::number(m, "%.0f mm", m * 1000); }
+using fmt::px;
 
 // Current position of a material point of block b (initial coordinates) at a record.
 struct Placer {
@@ -49,7 +45,7 @@ struct Map {
   double ox, oy, s, x0, y1;
   double X(double x) const { return ox + (x - x0) * s; }
   double Y(double y) const { return oy + (y1 - y) * s; }
-  std::string P(const Vec2& p) const { return f1(X(p.x())) + "," + f1(Y(p.y())); }
+  std::string P(const Vec2& p) const { return px(X(p.x())) + "," + px(Y(p.y())); }
 };
 
 std::string arrow_defs(const std::string& id) {
@@ -85,8 +81,8 @@ bool reaction_point(const RunResult& r, const StepRecord& s, int support, Vec2& 
 
 void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const DrawFrame& f, const Map& m, double width,
                 const std::string& id) {
-  o << "<text x=\"" << f1(m.ox + width / 2) << "\" y=\"" << f1(m.oy - 24) << "\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">"
-    << xml_escape(pn.title) << "</text>\n<text x=\"" << f1(m.ox + width / 2) << "\" y=\"" << f1(m.oy - 7)
+  o << "<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.oy - 24) << "\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">"
+    << xml_escape(pn.title) << "</text>\n<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.oy - 7)
     << "\" text-anchor=\"middle\" font-size=\"13\">" << xml_escape(pn.subtitle) << "</text>\n";
   if (!pn.run || !pn.record || pn.record->poses.size() != c.blocks.size()) return;
   const RunResult& r = *pn.run;
@@ -110,8 +106,8 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     if (!open_count[j]) continue;
     const JointInfo& J = r.joints[j];
     for (int side : {J.i, J.j})
-      o << "<line x1=\"" << f1(m.X(pl.at(side, J.a).x())) << "\" y1=\"" << f1(m.Y(pl.at(side, J.a).y())) << "\" x2=\""
-        << f1(m.X(pl.at(side, J.b).x())) << "\" y2=\"" << f1(m.Y(pl.at(side, J.b).y())) << "\"/>\n";
+      o << "<line x1=\"" << px(m.X(pl.at(side, J.a).x())) << "\" y1=\"" << px(m.Y(pl.at(side, J.a).y())) << "\" x2=\""
+        << px(m.X(pl.at(side, J.b).x())) << "\" y2=\"" << px(m.Y(pl.at(side, J.b).y())) << "\"/>\n";
   }
   o << "</g>\n";
   // Joint resultants: a segment through the pressure point along the force, length ~ F / W.
@@ -123,9 +119,9 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     const Vec2 t(-jf.n.y(), jf.n.x());
     const Vec2 F = jf.normal * jf.n + jf.shear * t;
     const Vec2 h = 0.5 * F / f.weight * f.force_len;
-    o << "<line x1=\"" << f1(m.X(jf.point.x() - h.x())) << "\" y1=\"" << f1(m.Y(jf.point.y() - h.y())) << "\" x2=\""
-      << f1(m.X(jf.point.x() + h.x())) << "\" y2=\"" << f1(m.Y(jf.point.y() + h.y())) << "\"/>"
-      << "<circle cx=\"" << f1(m.X(jf.point.x())) << "\" cy=\"" << f1(m.Y(jf.point.y())) << "\" r=\"" << dot << "\"/>\n";
+    o << "<line x1=\"" << px(m.X(jf.point.x() - h.x())) << "\" y1=\"" << px(m.Y(jf.point.y() - h.y())) << "\" x2=\""
+      << px(m.X(jf.point.x() + h.x())) << "\" y2=\"" << px(m.Y(jf.point.y() + h.y())) << "\"/>"
+      << "<circle cx=\"" << px(m.X(jf.point.x())) << "\" cy=\"" << px(m.Y(jf.point.y())) << "\" r=\"" << dot << "\"/>\n";
   }
   o << "</g>\n";
   // Thrust line: through the pressure points, joined across every free block that carries force
@@ -139,13 +135,13 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
   }
   o << "<g stroke=\"" << kThrustLine << "\" stroke-width=\"2\" fill=\"none\">\n";
   for (const auto& [b, pts] : per_block)
-    if (pts.size() == 2) o << "<line x1=\"" << f1(m.X(pts[0].x())) << "\" y1=\"" << f1(m.Y(pts[0].y())) << "\" x2=\"" << f1(m.X(pts[1].x())) << "\" y2=\"" << f1(m.Y(pts[1].y())) << "\"/>\n";
+    if (pts.size() == 2) o << "<line x1=\"" << px(m.X(pts[0].x())) << "\" y1=\"" << px(m.Y(pts[0].y())) << "\" x2=\"" << px(m.X(pts[1].x())) << "\" y2=\"" << px(m.Y(pts[1].y())) << "\"/>\n";
   o << "</g>\n";
   // Hinges: the closed corner of a joint with one open corner.
   o << "<g fill=\"#fff\" stroke=\"" << kHinge << "\" stroke-width=\"2.2\">\n";
   for (const Hinge& h : hinges_of(c, r, s)) {
     const Vec2 p = pl.at(h.i, h.point);
-    o << "<circle cx=\"" << f1(m.X(p.x())) << "\" cy=\"" << f1(m.Y(p.y())) << "\" r=\"5\"><title>hinge " << xml_escape(h.label)
+    o << "<circle cx=\"" << px(m.X(p.x())) << "\" cy=\"" << px(m.Y(p.y())) << "\" r=\"5\"><title>hinge " << xml_escape(h.label)
       << "</title></circle>\n";
   }
   o << "</g>\n";
@@ -155,14 +151,14 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     Vec2 p;
     if (b < 0 || !reaction_point(r, s, b, p)) continue;
     const Vec2 tail = p - re.force / f.weight * f.force_len;
-    o << "<line x1=\"" << f1(m.X(tail.x())) << "\" y1=\"" << f1(m.Y(tail.y())) << "\" x2=\"" << f1(m.X(p.x())) << "\" y2=\""
-      << f1(m.Y(p.y())) << "\" stroke=\"" << kReaction << "\" stroke-width=\"2.6\" marker-end=\"url(#" << id << "arr)\"/>\n";
+    o << "<line x1=\"" << px(m.X(tail.x())) << "\" y1=\"" << px(m.Y(tail.y())) << "\" x2=\"" << px(m.X(p.x())) << "\" y2=\""
+      << px(m.Y(p.y())) << "\" stroke=\"" << kReaction << "\" stroke-width=\"2.6\" marker-end=\"url(#" << id << "arr)\"/>\n";
     // Label under the arrow's tail, kept inside the panel; two short lines so that the labels
     // of neighbouring supports do not run into each other.
     const double lx = std::clamp(m.X(tail.x()), m.ox + 35, m.ox + width - 35);
     const double ly = m.Y(tail.y());
-    o << "<text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 13) << "\" font-size=\"11\" fill=\"" << kReaction
-      << "\" text-anchor=\"middle\">H " << fmt::g(re.force.x() / f.weight) << " W</text><text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 26)
+    o << "<text x=\"" << px(lx) << "\" y=\"" << px(ly + 13) << "\" font-size=\"11\" fill=\"" << kReaction
+      << "\" text-anchor=\"middle\">H " << fmt::g(re.force.x() / f.weight) << " W</text><text x=\"" << px(lx) << "\" y=\"" << px(ly + 26)
       << "\" font-size=\"11\" fill=\"" << kReaction << "\" text-anchor=\"middle\">V " << fmt::g(re.force.y() / f.weight) << " W</text>\n";
   }
   // The imposed motion: a grey arrow beside each moving support (off to its side, clear of the
@@ -181,30 +177,24 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     const double X = m.X(mid.x()), Y = m.Y(mid.y()), L = 30;  // px
     o << "<g stroke=\"#555\" stroke-width=\"2.4\" fill=\"none\"><title>imposed support motion</title>";
     if (tn > 0)
-      o << "<line x1=\"" << f1(X - u.x() * L / 2) << "\" y1=\"" << f1(Y + u.y() * L / 2) << "\" x2=\"" << f1(X + u.x() * L / 2) << "\" y2=\""
-        << f1(Y - u.y() * L / 2) << "\" marker-end=\"url(#" << id << "mot)\"/>";
+      o << "<line x1=\"" << px(X - u.x() * L / 2) << "\" y1=\"" << px(Y + u.y() * L / 2) << "\" x2=\"" << px(X + u.x() * L / 2) << "\" y2=\""
+        << px(Y - u.y() * L / 2) << "\" marker-end=\"url(#" << id << "mot)\"/>";
     if (sm.rotation != 0) {
       const double rr = 10, cx = X + perp.x() * 18, cy = Y - perp.y() * 18;
       const bool ccw = sm.rotation > 0;
-      o << "<path d=\"M" << f1(cx + rr) << "," << f1(cy) << " A" << rr << "," << rr << " 0 1," << (ccw ? 0 : 1) << " " << f1(cx) << ","
-        << f1(ccw ? cy - rr : cy + rr) << "\" marker-end=\"url(#" << id << "mot)\"/>";
+      o << "<path d=\"M" << px(cx + rr) << "," << px(cy) << " A" << rr << "," << rr << " 0 1," << (ccw ? 0 : 1) << " " << px(cx) << ","
+        << px(ccw ? cy - rr : cy + rr) << "\" marker-end=\"url(#" << id << "mot)\"/>";
     }
     o << "</g>\n";
   }
   // Status line under the drawing.
   const size_t nh = hinges_of(c, r, s).size();
-  o << "<text x=\"" << f1(m.ox + width / 2) << "\" y=\"" << f1(m.Y(f.lo.y()) + 16) << "\" text-anchor=\"middle\" font-size=\"12\" fill=\"#333\">"
+  o << "<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.Y(f.lo.y()) + 16) << "\" text-anchor=\"middle\" font-size=\"12\" fill=\"#333\">"
     << s.cracked.size() << " cracked joint" << (s.cracked.size() == 1 ? "" : "s") << ", " << nh << " hinge" << (nh == 1 ? "" : "s")
     << "</text>\n";
 }
 
 }  // namespace
-
-double nice_step(double range, int n) {
-  if (!(range > 0)) return 1;
-  const double raw = range / n, p = std::pow(10.0, std::floor(std::log10(raw))), q = raw / p;
-  return (q < 1.5 ? 1 : q < 3 ? 2 : q < 7 ? 5 : 10) * p;
-}
 
 DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs) {
   DrawFrame f;
@@ -260,12 +250,9 @@ std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const
   const double W = panels.size() * panel_width + (panels.size() + 1) * gap;
   const double H = top + ph + 24 + legend_h;
   std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 " << f1(W)
-    << " " << f1(H) << "\" font-family=\"Helvetica, Arial, sans-serif\">\n"
-    << arrow_defs(id)
+  o << svg_open(W, H) << arrow_defs(id)
     << "<defs><pattern id=\"" << id << "hatch\" width=\"6\" height=\"6\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(45)\">"
-       "<rect width=\"6\" height=\"6\" fill=\"#cfcfcf\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"6\" stroke=\"#8a8a8a\" stroke-width=\"1.5\"/></pattern></defs>\n"
-    << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+       "<rect width=\"6\" height=\"6\" fill=\"#cfcfcf\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"6\" stroke=\"#8a8a8a\" stroke-width=\"1.5\"/></pattern></defs>\n";
   for (size_t k = 0; k < panels.size(); ++k) {
     const Map m{gap + k * (panel_width + gap), top, s, f.lo.x(), f.hi.y()};
     o << "<g class=\"panel\">\n";
@@ -276,7 +263,7 @@ std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const
   const double ly = top + ph + 34;
   double x = gap;
   const auto item = [&](const std::string& glyph, const std::string& text, double w) {
-    o << "<g transform=\"translate(" << f1(x) << "," << f1(ly) << ")\">" << glyph << "<text x=\"30\" y=\"4\" font-size=\"12\">" << text
+    o << "<g transform=\"translate(" << px(x) << "," << px(ly) << ")\">" << glyph << "<text x=\"30\" y=\"4\" font-size=\"12\">" << text
       << "</text></g>\n";
     x += w;
   };
@@ -291,9 +278,9 @@ std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const
   item(std::string("<line x1=\"0\" y1=\"0\" x2=\"22\" y2=\"0\" stroke=\"#555\" stroke-width=\"2.4\" marker-end=\"url(#") + id + "mot)\"/>",
        "imposed motion", 130);
   const double bar = 0.1 * f.force_len * s;
-  o << "<g transform=\"translate(" << f1(gap) << "," << f1(ly + 22) << ")\"><line x1=\"0\" y1=\"0\" x2=\"" << f1(bar)
+  o << "<g transform=\"translate(" << px(gap) << "," << px(ly + 22) << ")\"><line x1=\"0\" y1=\"0\" x2=\"" << px(bar)
     << "\" y2=\"0\" stroke=\"" << kForce << "\" stroke-width=\"1.6\"/><line x1=\"0\" y1=\"-4\" x2=\"0\" y2=\"4\" stroke=\"" << kForce
-    << "\"/><line x1=\"" << f1(bar) << "\" y1=\"-4\" x2=\"" << f1(bar) << "\" y2=\"4\" stroke=\"" << kForce << "\"/><text x=\"" << f1(bar + 8)
+    << "\"/><line x1=\"" << px(bar) << "\" y1=\"-4\" x2=\"" << px(bar) << "\" y2=\"4\" stroke=\"" << kForce << "\"/><text x=\"" << px(bar + 8)
     << "\" y=\"4\" font-size=\"12\">force scale: 0.1 W = " << fmt::kn(0.1 * f.weight) << " kN; hatched: supports</text></g>\n";
   o << "</svg>\n";
   return o.str();
@@ -313,10 +300,8 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
   std::vector<std::string> supports;
   for (const SupportCurve& sc : k.supports) supports.push_back(sc.support);
   std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"thrust\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 "
-    << f1(W) << " " << f1(H) << "\" font-family=\"Helvetica, Arial, sans-serif\" data-x0=\"" << f1(left) << "\" data-sx=\"" << fmt::g(sx, 10)
-    << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
-  o << "<text x=\"" << f1(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Support reactions over total weight W = "
+  o << svg_open(W, H, "class=\"thrust\" data-x0=\"" + px(left) + "\" data-sx=\"" + fmt::g(sx, 10) + "\"");
+  o << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Support reactions over total weight W = "
     << fmt::kn(W_n) << " kN</text>\n";
   for (int comp = 0; comp < 2; ++comp) {
     const double oy = top + comp * (ph + between);
@@ -338,39 +323,24 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
     const double padv = 0.06 * (hi - lo);
     lo -= padv;
     hi += padv;
-    const auto X = [&](double d) { return left + d * sx; };
-    const auto Y = [&](double v) { return oy + (hi - v) / (hi - lo) * ph; };
-    // Axes and grid.
-    o << "<g font-size=\"11\" fill=\"#333\">\n";
-    const double ty = nice_step(hi - lo, 6);
-    for (double v = std::ceil(lo / ty) * ty; v <= hi + 1e-12; v += ty)
-      o << "<line x1=\"" << f1(left) << "\" x2=\"" << f1(left + pw) << "\" y1=\"" << f1(Y(v)) << "\" y2=\"" << f1(Y(v))
-        << "\" stroke=\"" << (std::abs(v) < ty * 1e-6 ? "#999" : "#e6e6e6") << "\"/><text x=\"" << f1(left - 6) << "\" y=\"" << f1(Y(v) + 4)
-        << "\" text-anchor=\"end\">" << fmt::g(std::abs(v) < ty * 1e-6 ? 0.0 : v) << "</text>\n";
-    const double tx = nice_step(dmax * 1000, 8) / 1000;
-    for (double d = 0; d <= dmax + 1e-12; d += tx)
-      o << "<line x1=\"" << f1(X(d)) << "\" x2=\"" << f1(X(d)) << "\" y1=\"" << f1(oy) << "\" y2=\"" << f1(oy + ph)
-        << "\" stroke=\"#eeeeee\"/><text x=\"" << f1(X(d)) << "\" y=\"" << f1(oy + ph + 14) << "\" text-anchor=\"middle\">" << fmt::g(d * 1000, 4)
-        << "</text>\n";
-    o << "<rect x=\"" << f1(left) << "\" y=\"" << f1(oy) << "\" width=\"" << f1(pw) << "\" height=\"" << f1(ph)
-      << "\" fill=\"none\" stroke=\"#333\"/>\n";
-    o << "<text x=\"" << f1(left + pw / 2) << "\" y=\"" << f1(oy + ph + 30) << "\" text-anchor=\"middle\" font-size=\"12\">support displacement d (mm)</text>\n";
-    o << "<text transform=\"translate(" << f1(left - 46) << "," << f1(oy + ph / 2) << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">"
-      << (comp == 0 ? "horizontal reaction H / W" : "vertical reaction V / W") << "</text>\n";
-    o << "</g>\n";
+    const Plot plot{left, oy, pw, ph, 0, dmax, lo, hi};
+    const auto X = [&](double d) { return plot.X(d); };
+    const auto Y = [&](double v) { return plot.Y(v); };
+    o << svg_axes(plot, linear_ticks(0, dmax, 8, 4, 1000), linear_ticks(lo, hi, 6, 3), "support displacement d (mm)",
+                  comp == 0 ? "horizontal reaction H / W" : "vertical reaction V / W");
     // Mechanism changes: ticks at the top (a) and the bottom (b) of the panel, and the capacities.
     const auto marks = [&](const RunSummary& rs, bool at_top, const char* dash) {
       for (double d : rs.changes)
-        o << "<path d=\"M" << f1(X(d)) << "," << f1(at_top ? oy : oy + ph) << " l-4," << (at_top ? "-8" : "8") << " h8 z\" fill=\"#555\"><title>"
+        o << "<path d=\"M" << px(X(d)) << "," << px(at_top ? oy : oy + ph) << " l-4," << (at_top ? "-8" : "8") << " h8 z\" fill=\"#555\"><title>"
           << xml_escape(rs.label) << ": mechanism changes at d = " << fmt::g(d * 1000, 4) << " mm</title></path>\n";
-      o << "<line x1=\"" << f1(X(rs.capacity)) << "\" x2=\"" << f1(X(rs.capacity)) << "\" y1=\"" << f1(oy) << "\" y2=\"" << f1(oy + ph)
+      o << "<line x1=\"" << px(X(rs.capacity)) << "\" x2=\"" << px(X(rs.capacity)) << "\" y1=\"" << px(oy) << "\" y2=\"" << px(oy + ph)
         << "\" stroke=\"#555\" stroke-width=\"1\" stroke-dasharray=\"" << dash << "\"/>\n";
     };
     marks(k.a, true, "2,3");
     marks(k.b, false, "7,4");
     // Curves: one colour per support; a solid, b dashed.
     for (size_t si = 0; si < supports.size(); ++si) {
-      const char* col = kSupportColors[si % 8];
+      const char* col = series_color(si);
       for (int run = 0; run < 2; ++run) {
         const auto& recs = run == 0 ? ra : rb;
         std::string pts;
@@ -378,14 +348,14 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
           for (const Reaction& x : s->reactions)
             if (x.support == supports[si]) {
               const double v = (comp == 0 ? x.force.x() : x.force.y()) / W_n;
-              if (std::isfinite(v)) pts += f1(X(s->d)) + "," + f1(Y(v)) + " ";
+              if (std::isfinite(v)) pts += px(X(s->d)) + "," + px(Y(v)) + " ";
             }
         o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"" << (run == 0 ? "2.2" : "2") << "\""
           << (run == 1 ? " stroke-dasharray=\"7,4\"" : "") << " points=\"" << pts << "\"/>\n";
       }
     }
     if (cursor)
-      o << "<line class=\"cursor\" x1=\"" << f1(left) << "\" x2=\"" << f1(left) << "\" y1=\"" << f1(oy) << "\" y2=\"" << f1(oy + ph)
+      o << "<line class=\"cursor\" x1=\"" << px(left) << "\" x2=\"" << px(left) << "\" y1=\"" << px(oy) << "\" y2=\"" << px(oy + ph)
         << "\" stroke=\"#000\" stroke-width=\"1.5\" opacity=\"0.6\"/>\n";
   }
   // Legend on the right.
@@ -394,28 +364,28 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
   o << "<g font-size=\"12\">\n";
   for (int run = 0; run < 2; ++run) {
     const RunSummary& rs = run == 0 ? k.a : k.b;
-    o << "<line x1=\"" << f1(lx) << "\" x2=\"" << f1(lx + 30) << "\" y1=\"" << f1(ly) << "\" y2=\"" << f1(ly) << "\" stroke=\"#333\" stroke-width=\"2\""
-      << (run == 1 ? " stroke-dasharray=\"7,4\"" : "") << "/><text x=\"" << f1(lx + 36) << "\" y=\"" << f1(ly + 4) << "\">" << xml_escape(rs.label)
+    o << "<line x1=\"" << px(lx) << "\" x2=\"" << px(lx + 30) << "\" y1=\"" << px(ly) << "\" y2=\"" << px(ly) << "\" stroke=\"#333\" stroke-width=\"2\""
+      << (run == 1 ? " stroke-dasharray=\"7,4\"" : "") << "/><text x=\"" << px(lx + 36) << "\" y=\"" << px(ly + 4) << "\">" << xml_escape(rs.label)
       << "</text>\n";
     ly += 20;
   }
   ly += 6;
   for (size_t si = 0; si < supports.size(); ++si) {
-    o << "<rect x=\"" << f1(lx) << "\" y=\"" << f1(ly - 6) << "\" width=\"30\" height=\"10\" fill=\"" << kSupportColors[si % 8]
-      << "\"/><text x=\"" << f1(lx + 36) << "\" y=\"" << f1(ly + 4) << "\">" << xml_escape(supports[si]) << "</text>\n";
+    o << "<rect x=\"" << px(lx) << "\" y=\"" << px(ly - 6) << "\" width=\"30\" height=\"10\" fill=\"" << series_color(si)
+      << "\"/><text x=\"" << px(lx + 36) << "\" y=\"" << px(ly + 4) << "\">" << xml_escape(supports[si]) << "</text>\n";
     ly += 18;
   }
   ly += 10;
-  o << "<text x=\"" << f1(lx) << "\" y=\"" << f1(ly + 4) << "\">mechanism changes:</text>\n";
+  o << "<text x=\"" << px(lx) << "\" y=\"" << px(ly + 4) << "\">mechanism changes:</text>\n";
   ly += 18;
-  o << "<path d=\"M" << f1(lx + 15) << "," << f1(ly + 4) << " l-4,-8 h8 z\" fill=\"#555\"/><text x=\"" << f1(lx + 30) << "\" y=\"" << f1(ly + 4)
+  o << "<path d=\"M" << px(lx + 15) << "," << px(ly + 4) << " l-4,-8 h8 z\" fill=\"#555\"/><text x=\"" << px(lx + 30) << "\" y=\"" << px(ly + 4)
     << "\">" << xml_escape(k.a.label) << " (top)</text>\n";
   ly += 18;
-  o << "<path d=\"M" << f1(lx + 15) << "," << f1(ly - 4) << " l-4,8 h8 z\" fill=\"#555\"/><text x=\"" << f1(lx + 30) << "\" y=\"" << f1(ly + 4)
+  o << "<path d=\"M" << px(lx + 15) << "," << px(ly - 4) << " l-4,8 h8 z\" fill=\"#555\"/><text x=\"" << px(lx + 30) << "\" y=\"" << px(ly + 4)
     << "\">" << xml_escape(k.b.label) << " (bottom)</text>\n";
   ly += 22;
-  o << "<line x1=\"" << f1(lx) << "\" x2=\"" << f1(lx + 30) << "\" y1=\"" << f1(ly) << "\" y2=\"" << f1(ly)
-    << "\" stroke=\"#555\" stroke-dasharray=\"2,3\"/><text x=\"" << f1(lx + 36) << "\" y=\"" << f1(ly + 4) << "\">capacities</text>\n";
+  o << "<line x1=\"" << px(lx) << "\" x2=\"" << px(lx + 30) << "\" y1=\"" << px(ly) << "\" y2=\"" << px(ly)
+    << "\" stroke=\"#555\" stroke-dasharray=\"2,3\"/><text x=\"" << px(lx + 36) << "\" y=\"" << px(ly + 4) << "\">capacities</text>\n";
   o << "</g>\n</svg>\n";
   return o.str();
 }
@@ -428,18 +398,16 @@ std::string svg_capacity(const std::vector<Bar>& bars) {
     if (std::isfinite(b.value)) vmax = std::max(vmax, b.value);
   if (!(vmax > 0)) vmax = 1e-3;
   std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 " << f1(W) << " " << f1(H)
-    << "\" font-family=\"Helvetica, Arial, sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n"
-    << "<text x=\"" << f1(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Displacement capacity (last stable d)</text>\n";
+  o << svg_open(W, H) << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Displacement capacity (last stable d)</text>\n";
   for (size_t k = 0; k < bars.size(); ++k) {
     const double y = top + k * (bh + gap);
     const double w = std::isfinite(bars[k].value) ? bars[k].value / vmax * bw : 0;
-    o << "<text x=\"" << f1(left - 8) << "\" y=\"" << f1(y + bh / 2 + 5) << "\" text-anchor=\"end\" font-size=\"13\">" << xml_escape(bars[k].label)
-      << "</text><rect x=\"" << f1(left) << "\" y=\"" << f1(y) << "\" width=\"" << f1(w) << "\" height=\"" << f1(bh) << "\" fill=\""
-      << xml_escape(bars[k].color) << "\"/><text x=\"" << f1(left + w + 6) << "\" y=\"" << f1(y + bh / 2 + 5) << "\" font-size=\"13\">"
-      << mm(bars[k].value) << "</text>\n";
+    o << "<text x=\"" << px(left - 8) << "\" y=\"" << px(y + bh / 2 + 5) << "\" text-anchor=\"end\" font-size=\"13\">" << xml_escape(bars[k].label)
+      << "</text><rect x=\"" << px(left) << "\" y=\"" << px(y) << "\" width=\"" << px(w) << "\" height=\"" << px(bh) << "\" fill=\""
+      << xml_escape(bars[k].color) << "\"/><text x=\"" << px(left + w + 6) << "\" y=\"" << px(y + bh / 2 + 5) << "\" font-size=\"13\">"
+      << (std::isfinite(bars[k].value) ? fmt::mm(bars[k].value) + " mm" : "n/a") << "</text>\n";
   }
-  o << "<line x1=\"" << f1(left) << "\" x2=\"" << f1(left) << "\" y1=\"" << f1(top - 4) << "\" y2=\"" << f1(H - 26) << "\" stroke=\"#333\"/>\n</svg>\n";
+  o << "<line x1=\"" << px(left) << "\" x2=\"" << px(left) << "\" y1=\"" << px(top - 4) << "\" y2=\"" << px(H - 26) << "\" stroke=\"#333\"/>\n</svg>\n";
   return o.str();
 }
 

@@ -10,11 +10,6 @@
 
 namespace masonry {
 
-// xml_escape: model/case.hpp.
-
-// A "nice" tick step (1, 2 or 5 times a power of ten) giving about n ticks over `range`.
-double nice_step(double range, int n);
-
 // World window and force scale shared by every structure drawing of one comparison, so frames
 // do not jump and forces are comparable between methods and steps.
 struct DrawFrame {

@@ -112,8 +112,6 @@ struct Case {
 // (an ANSI escape, a newline) written as \xNN, and more than `max` characters shortened to their
 // beginning and a count, so a message stays one readable line whatever the input held.
 std::string printable(const std::string& text, size_t max = 80);
-// Escapes & < > " ' for XML/HTML text and attribute values (reports, figures, the case view).
-std::string xml_escape(const std::string& s);
 
 // Parses and validates a case (JSON text). `source` names the file in messages.
 Case parse_case(const std::string& text, const std::string& source);

@@ -7,9 +7,11 @@
 #include <limits>
 #include <sstream>
 
-#include "compare/format.hpp"
-#include "compare/report.hpp"
-#include "compare/svg.hpp"
+#include "report/document.hpp"
+#include "report/escape.hpp"
+#include "report/format.hpp"
+#include "report/html.hpp"
+#include "report/svg.hpp"
 #include "sweep/sweep.hpp"
 
 namespace masonry {
@@ -19,12 +21,10 @@ using ojson = nlohmann::ordered_json;
 
 namespace {
 
-const char* kCurveColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"};
-
 ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
-std::string f1(double x) { return fmt::number(x, "%.1f", x); }
-std::string pct(double x) { return fmt::number(x, "%+.1f%%", x * 100); }
-std::string secs(double s) { return fmt::number(s, s < 10 ? "%.3g" : "%.0f", s); }
+using fmt::pct;
+using fmt::px;
+using fmt::secs;
 
 const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
 double x_of(const SweepPlan& p, const SweepSummary& s, int run) {
@@ -61,64 +61,6 @@ bool any_dem(const SweepPlan& p) {
     if (r.method == "dem") return true;
   return false;
 }
-
-// A table of plain-text cells, written as Markdown or HTML (escaped by each writer).
-struct Table {
-  std::vector<std::string> head;
-  std::vector<std::vector<std::string>> rows;
-  std::string markdown() const {
-    std::string o;
-    const auto line = [&](const std::vector<std::string>& cells) {
-      o += '|';
-      for (const std::string& c : cells) {
-        o += ' ';
-        o += md_escape(c);
-        o += " |";
-      }
-      o += '\n';
-    };
-    line(head);
-    o += '|';
-    for (const bool right : numeric_columns()) o += right ? "---:|" : "---|";
-    o += '\n';
-    for (const auto& r : rows) line(r);
-    o += '\n';
-    return o;
-  }
-  // A column of numbers (or dashes) is right-aligned, text left.
-  std::vector<bool> numeric_columns() const {
-    std::vector<bool> numeric(head.size(), false), text(head.size(), false);
-    for (const auto& r : rows)
-      for (size_t k = 0; k < r.size() && k < head.size(); ++k) {
-        if (r[k] == "-" || r[k].empty()) continue;
-        char* end = nullptr;
-        std::strtod(r[k].c_str(), &end);
-        (end != r[k].c_str() && (*end == '\0' || *end == '%') ? numeric : text)[k] = true;
-      }
-    for (size_t k = 0; k < head.size(); ++k) numeric[k] = numeric[k] && !text[k];
-    return numeric;
-  }
-  std::string html() const {
-    const std::vector<bool> right = numeric_columns();
-    std::string o = "<table><tr>";
-    for (size_t k = 0; k < head.size(); ++k) {
-      o += right[k] ? "<th>" : "<th class=\"text\">";
-      o += xml_escape(head[k]);
-      o += "</th>";
-    }
-    o += "</tr>\n";
-    for (const auto& r : rows) {
-      o += "<tr>";
-      for (size_t k = 0; k < r.size(); ++k) {
-        o += k < right.size() && right[k] ? "<td>" : "<td class=\"text\">";
-        o += xml_escape(r[k]);
-        o += "</td>";
-      }
-      o += "</tr>\n";
-    }
-    return o + "</table>\n";
-  }
-};
 
 // The report's text, shared by the Markdown and the HTML writers.
 struct Content {
@@ -171,7 +113,7 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
       r.push_back(secs(row->time_s));
       r.push_back(row->message);
     }
-    c.runs.rows.push_back(std::move(r));
+    c.runs.rows.emplace_back(r.begin(), r.end());
   }
   return c;
 }
@@ -251,57 +193,44 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
   xhi += padx;
   if (!(ymax > 0)) ymax = 1e-3;
   ymax *= 1.1;
-  const auto X = [&](double x) { return left + (x - xlo) / (xhi - xlo) * pw; };
-  const auto Y = [&](double y) { return top + (1 - y / ymax) * ph; };
+  const Plot plot{left, top, pw, ph, xlo, xhi, 0, ymax};
+  const auto X = [&](double x) { return plot.X(x); };
+  const auto Y = [&](double y) { return plot.Y(y); };
   std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 " << f1(W) << " " << f1(H)
-    << "\" font-family=\"Helvetica, Arial, sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n"
-    << "<text x=\"" << f1(left) << "\" y=\"22\" font-size=\"15\" font-weight=\"bold\">Capacity against the " << xml_escape(x_title(s))
-    << "</text>\n<g font-size=\"11\" fill=\"#333\">\n";
-  const double ty = nice_step(ymax, 6), tx = nice_step(xhi - xlo, 8);
-  for (double y = 0; y <= ymax + 1e-15; y += ty)
-    o << "<line x1=\"" << f1(left) << "\" x2=\"" << f1(left + pw) << "\" y1=\"" << f1(Y(y)) << "\" y2=\"" << f1(Y(y)) << "\" stroke=\""
-      << (y == 0 ? "#999" : "#e6e6e6") << "\"/><text x=\"" << f1(left - 6) << "\" y=\"" << f1(Y(y) + 4) << "\" text-anchor=\"end\">"
-      << fmt::g(y, 4) << "</text>\n";
-  for (double x = std::ceil(xlo / tx) * tx; x <= xhi + 1e-12; x += tx)
-    o << "<line x1=\"" << f1(X(x)) << "\" x2=\"" << f1(X(x)) << "\" y1=\"" << f1(top) << "\" y2=\"" << f1(top + ph)
-      << "\" stroke=\"#eeeeee\"/><text x=\"" << f1(X(x)) << "\" y=\"" << f1(top + ph + 14) << "\" text-anchor=\"middle\">"
-      << fmt::g(std::abs(x) < tx * 1e-9 ? 0.0 : x, 6) << "</text>\n";
-  o << "<rect x=\"" << f1(left) << "\" y=\"" << f1(top) << "\" width=\"" << f1(pw) << "\" height=\"" << f1(ph) << "\" fill=\"none\" stroke=\"#333\"/>\n"
-    << "<text x=\"" << f1(left + pw / 2) << "\" y=\"" << f1(top + ph + 34) << "\" text-anchor=\"middle\" font-size=\"13\">" << xml_escape(x_title(s))
-    << "</text>\n<text transform=\"translate(" << f1(left - 52) << "," << f1(top + ph / 2)
-    << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">capacity: last stable d (m)</text>\n</g>\n";
+  o << svg_open(W, H) << "<text x=\"" << px(left) << "\" y=\"22\" font-size=\"15\" font-weight=\"bold\">Capacity against the "
+    << xml_escape(x_title(s)) << "</text>\n"
+    << svg_axes(plot, linear_ticks(xlo, xhi, 8, 6), linear_ticks(0, ymax, 6, 4), x_title(s), "capacity: last stable d (m)");
   for (size_t ci = 0; ci < s.curves.size(); ++ci) {
     const SweepCurve& c = s.curves[ci];
-    const char* col = kCurveColors[ci % 8];
+    const char* col = series_color(ci);
     // The PRD reference: one horizontal line when every point has the same PRD run.
     if (dem) {
       const SweepRow* pr = curve_prd(p, t, c);
       std::string pts;
       if (pr) {
-        pts = f1(X(xlo)) + "," + f1(Y(pr->capacity)) + " " + f1(X(xhi)) + "," + f1(Y(pr->capacity));
+        pts = px(X(xlo)) + "," + px(Y(pr->capacity)) + " " + px(X(xhi)) + "," + px(Y(pr->capacity));
       } else {
         for (int i : c.runs)
           if (const SweepRow* q = row_at(t, p.runs[i].prd); q && located(*q))
-            pts += f1(X(x_of(p, s, i))) + "," + f1(Y(q->capacity)) + " ";
+            pts += px(X(x_of(p, s, i))) + "," + px(Y(q->capacity)) + " ";
       }
       if (!pts.empty())
         o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"1.8\" stroke-dasharray=\"8,5\" points=\"" << pts
           << "\"><title>PRD capacity</title></polyline>\n";
       if (fx && pr && pr->required_friction_angle)
-        o << "<line x1=\"" << f1(X(*pr->required_friction_angle)) << "\" x2=\"" << f1(X(*pr->required_friction_angle)) << "\" y1=\""
-          << f1(top) << "\" y2=\"" << f1(top + ph) << "\" stroke=\"" << col << "\" stroke-width=\"1.6\" stroke-dasharray=\"2,3\"><title>PRD: sliding below "
+        o << "<line x1=\"" << px(X(*pr->required_friction_angle)) << "\" x2=\"" << px(X(*pr->required_friction_angle)) << "\" y1=\""
+          << px(top) << "\" y2=\"" << px(top + ph) << "\" stroke=\"" << col << "\" stroke-width=\"1.6\" stroke-dasharray=\"2,3\"><title>PRD: sliding below "
           << fmt::g(*pr->required_friction_angle, 4) << " deg</title></line>\n";
       if (c.boundary)
-        o << "<line x1=\"" << f1(X(*c.boundary)) << "\" x2=\"" << f1(X(*c.boundary)) << "\" y1=\"" << f1(top) << "\" y2=\"" << f1(top + ph)
+        o << "<line x1=\"" << px(X(*c.boundary)) << "\" x2=\"" << px(X(*c.boundary)) << "\" y1=\"" << px(top) << "\" y2=\"" << px(top + ph)
           << "\" stroke=\"" << col << "\" stroke-width=\"1.4\" stroke-dasharray=\"10,3,2,3\"><title>DEM and PRD differ by more than "
           << fmt::g(p.tolerance * 100) << "% up to " << fmt::g(*c.boundary, 6) << "</title></line>\n";
     }
     std::string pts;
-    for (int i : c.runs) pts += f1(X(x_of(p, s, i))) + "," + f1(Y(t[i]->capacity)) + " ";
+    for (int i : c.runs) pts += px(X(x_of(p, s, i))) + "," + px(Y(t[i]->capacity)) + " ";
     o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"2\" points=\"" << pts << "\"/>\n<g fill=\"" << col << "\">\n";
     for (int i : c.runs)
-      o << "<circle cx=\"" << f1(X(x_of(p, s, i))) << "\" cy=\"" << f1(Y(t[i]->capacity)) << "\" r=\"3.5\"><title>run " << i << ": "
+      o << "<circle cx=\"" << px(X(x_of(p, s, i))) << "\" cy=\"" << px(Y(t[i]->capacity)) << "\" r=\"3.5\"><title>run " << i << ": "
         << xml_escape(run_label(p, p.runs[i])) << ": " << fmt::g(t[i]->capacity, 6) << " m, " << status_name(t[i]->status) << "</title></circle>\n";
     o << "</g>\n";
   }
@@ -310,12 +239,12 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
   const double lx = left + pw + 16;
   o << "<g font-size=\"12\">\n";
   for (size_t ci = 0; ci < s.curves.size(); ++ci, ly += 18)
-    o << "<rect x=\"" << f1(lx) << "\" y=\"" << f1(ly - 6) << "\" width=\"28\" height=\"10\" fill=\"" << kCurveColors[ci % 8] << "\"/><text x=\""
-      << f1(lx + 34) << "\" y=\"" << f1(ly + 4) << "\">" << xml_escape(curve_label(s.curves[ci], dem)) << "</text>\n";
+    o << "<rect x=\"" << px(lx) << "\" y=\"" << px(ly - 6) << "\" width=\"28\" height=\"10\" fill=\"" << series_color(ci) << "\"/><text x=\""
+      << px(lx + 34) << "\" y=\"" << px(ly + 4) << "\">" << xml_escape(curve_label(s.curves[ci], dem)) << "</text>\n";
   ly += 8;
   const auto style = [&](const char* dash, const std::string& text) {
-    o << "<line x1=\"" << f1(lx) << "\" x2=\"" << f1(lx + 28) << "\" y1=\"" << f1(ly) << "\" y2=\"" << f1(ly) << "\" stroke=\"#333\" stroke-width=\"1.8\""
-      << (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : std::string()) << "/><text x=\"" << f1(lx + 34) << "\" y=\"" << f1(ly + 4)
+    o << "<line x1=\"" << px(lx) << "\" x2=\"" << px(lx + 28) << "\" y1=\"" << px(ly) << "\" y2=\"" << px(ly) << "\" stroke=\"#333\" stroke-width=\"1.8\""
+      << (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : std::string()) << "/><text x=\"" << px(lx + 34) << "\" y=\"" << px(ly + 4)
       << "\">" << xml_escape(text) << "</text>\n";
     ly += 18;
   };
@@ -333,50 +262,46 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
   return o.str();
 }
 
-std::string sweep_markdown(const SweepPlan& p, const SweepTable& t, const SweepSummary& s, const std::string& command) {
+namespace {
+
+// The report for both media: the Markdown links figures/capacity.svg, the page inlines it.
+Document sweep_document(const SweepPlan& p, const SweepTable& t, const SweepSummary& s, const std::string& command) {
   const Content c = content(p, t, s);
-  std::ostringstream o;
-  o << "# " << md_escape(c.title) << "\n\n";
-  if (!p.description.empty()) o << md_escape(p.description) << "\n\n";
-  std::string cmd = command;  // a code span cannot escape a backtick
-  std::replace(cmd.begin(), cmd.end(), '`', '\'');
-  if (!cmd.empty()) o << "Made with `" << cmd << "`; the table is `sweep.csv`, the numbers also in `sweep.json`.\n\n";
-  o << md_escape(c.lead) << "\n\n";
-  if (c.has_figure) o << "## Capacity against the " << md_escape(x_title(s)) << "\n\n![capacity against " << md_escape(s.x) << "](figures/capacity.svg)\n\n";
-  if (!c.boundaries.head.empty()) {
-    o << "## Where DEM and PRD part\n\n";
-    for (const std::string& f : c.findings) o << "- " << md_escape(f) << "\n";
-    o << (c.findings.empty() ? "" : "\n") << c.boundaries.markdown();
+  Document d;
+  d.title = c.title;
+  if (!p.description.empty()) d.paragraph({p.description});
+  if (!command.empty())
+    d.paragraph({"Made with ", Cell(command, CellStyle::code), "; the table is ", Cell("sweep.csv", CellStyle::code), ", the numbers also in ",
+                 Cell("sweep.json", CellStyle::code), "."});
+  d.paragraph({c.lead});
+  if (c.has_figure) {
+    d.heading(2, {"Capacity against the " + x_title(s)});
+    d.figure("figures/capacity.svg", "capacity against " + s.x, svg_sweep(p, t, s));
   }
-  o << "## Runs\n\n" << c.runs.markdown();
-  return o.str();
+  if (!c.boundaries.head.empty()) {
+    d.heading(2, {"Where DEM and PRD part"});
+    std::vector<Item> items;
+    for (const std::string& f : c.findings) items.push_back({{f}, {}});
+    if (!items.empty()) d.list(std::move(items));
+    d.table(c.boundaries);
+  }
+  d.heading(2, {"Runs"});
+  d.table(c.runs);
+  return d;
+}
+
+}  // namespace
+
+std::string sweep_markdown(const SweepPlan& p, const SweepTable& t, const SweepSummary& s, const std::string& command) {
+  return markdown(sweep_document(p, t, s, command));
 }
 
 std::string sweep_html(const SweepPlan& p, const SweepTable& t, const SweepSummary& s, const std::string& command) {
-  const Content c = content(p, t, s);
-  std::ostringstream o;
-  // No script at all: the page is a figure and tables, so the policy allows none.
-  o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-    << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">\n<title>"
-    << xml_escape(c.title) << "</title>\n<style>\nbody{font-family:Helvetica,Arial,sans-serif;max-width:1040px;margin:1em auto;padding:0 1em;color:#222}\n"
-    << "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
-       ".text{text-align:left}\nsvg{max-width:100%;height:auto}\n</style>\n</head>\n<body>\n"
-    << "<h1>" << xml_escape(c.title) << "</h1>\n";
-  if (!p.description.empty()) o << "<p>" << xml_escape(p.description) << "</p>\n";
-  if (!command.empty()) o << "<p>Made with <code>" << xml_escape(command) << "</code>; the table is <code>sweep.csv</code>, the numbers also in <code>sweep.json</code>.</p>\n";
-  o << "<p>" << xml_escape(c.lead) << "</p>\n";
-  if (c.has_figure) o << "<h2>Capacity against the " << xml_escape(x_title(s)) << "</h2>\n" << svg_sweep(p, t, s);
-  if (!c.boundaries.head.empty()) {
-    o << "<h2>Where DEM and PRD part</h2>\n";
-    if (!c.findings.empty()) {
-      o << "<ul>\n";
-      for (const std::string& f : c.findings) o << "<li>" << xml_escape(f) << "</li>\n";
-      o << "</ul>\n";
-    }
-    o << c.boundaries.html();
-  }
-  o << "<h2>Runs</h2>\n" << c.runs.html() << "</body>\n</html>\n";
-  return o.str();
+  const Document d = sweep_document(p, t, s, command);
+  HtmlPage page;  // no script: a figure and tables
+  page.title = d.title;
+  page.body = html_body(d);
+  return html_page(page);
 }
 
 void write_sweep_outputs(const std::string& dir, const SweepPlan& p, const SweepTable& t, const std::string& command) {

@@ -9,9 +9,11 @@
 #include <set>
 #include <sstream>
 
-#include "compare/format.hpp"
-#include "compare/report.hpp"
-#include "compare/svg.hpp"
+#include "report/document.hpp"
+#include "report/escape.hpp"
+#include "report/format.hpp"
+#include "report/html.hpp"
+#include "report/svg.hpp"
 #include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
@@ -36,14 +38,10 @@ std::string options_text(const std::vector<CaseOption>& o) {
   return s;
 }
 
-// Seconds with three significant digits and no exponent: 0.0123, 4.56, 2222.
-std::string secs(double s) {
-  if (!std::isfinite(s)) return "n/a";
-  if (s >= 100) return fmt::number(s, "%.0f", s);
-  if (s >= 1e-3) return fmt::number(s, "%.3g", s);
-  return fmt::number(s, "%.2g", s);
-}
-// Errors: an exact zero (a setting that gives the reference's result) reads "0".
+using fmt::px;
+using fmt::secs;
+
+// Errors (spanning decades, so in significant digits): an exact zero (a setting that gives the reference's result) reads "0".
 std::string pct(double x) {
   if (x == 0) return "0%";
   return fmt::number(x, std::abs(x) < 1e-4 ? "%.1e%%" : "%.3g%%", x * 100);
@@ -56,7 +54,7 @@ std::string weight(double x) {
   if (x == 0) return "0 W";
   return fmt::number(x, std::abs(x) < 1e-3 ? "%.1e W" : "%.4f W", x);
 }
-std::string mm(double m) { return fmt::number(m, "%.1f", m * 1000); }
+std::string mm(double m) { return fmt::mm(m, 1); }
 
 std::string method_name(const std::string& m) { return m == "prd" ? "PRD" : m == "dem" ? "DEM" : m; }
 
@@ -93,38 +91,16 @@ Front front_of(const std::vector<Row>& rows, ErrorKind k) {
   return f;
 }
 
-// Colours per parameter (Okabe-Ito, then greys), in order of first appearance.
-const char* kColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#F0E442", "#7f7f7f", "#8c564b", "#17becf"};
-
+// Colours per parameter, in order of first appearance; black and grey mark the reference and baseline.
 std::map<std::string, std::string> parameter_colors(const std::vector<Row>& rows) {
   std::map<std::string, std::string> c;
   int n = 0;
   c["reference"] = "#000000";
   c["baseline"] = "#9e9e9e";
   for (const Row& r : rows)
-    if (!c.count(r.parameter)) c[r.parameter] = kColors[n++ % 10];
+    if (!c.count(r.parameter)) c[r.parameter] = series_color(n++);
   return c;
 }
-
-// Decade tick labels: 0.001, 0.1, 1, 1000 as such, smaller ones as 1e-5.
-std::string decade(double d) {
-  const double v = std::pow(10.0, d);
-  if (d >= 0) return fmt::number(v, "%.0f", v);
-  if (d >= -3) return fmt::number(v, "%.*f", int(-d), v);
-  return fmt::number(d, "1e%.0f", d);
-}
-
-std::string f1(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f", std::isfinite(x) ? x : 0.0);
-  return b;
-}
-
-// A table as plain-text cells, rendered to Markdown or HTML.
-struct Table {
-  std::vector<std::string> head;
-  std::vector<std::vector<std::string>> rows;
-};
 
 Table method_table(const Tradeoff& t, const std::string& method) {
   const std::vector<Row> rows = method_rows(t, method);
@@ -133,6 +109,9 @@ Table method_table(const Tradeoff& t, const std::string& method) {
   Table tb;
   tb.head = {"setting", "options", "stopped", "capacity (mm)", "capacity error", "thrust error max / rms (W)",
              "over d (mm)", "time (s)", "wall (s)", method == "prd" ? "LP solves" : "cycles", "Pareto"};
+  // Names, options and status left; numbers right, even where a cell adds a unit or a range.
+  tb.align.assign(tb.head.size(), Align::right);
+  for (int k = 0; k < 3; ++k) tb.align[k] = Align::left;
   for (size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     std::string setting = r.label;
@@ -151,41 +130,6 @@ Table method_table(const Tradeoff& t, const std::string& method) {
                        secs(r.wall_s), std::to_string(method == "prd" ? r.lp_solves : r.cycles), front.empty() ? "-" : front});
   }
   return tb;
-}
-
-std::string table_md(const Table& t) {
-  std::string o = "|";
-  // Appended piece by piece: GCC 12 warns (-Wrestrict, falsely) about " " + std::string here.
-  for (const std::string& h : t.head) {
-    o += ' ';
-    o += md_escape(h);
-    o += " |";
-  }
-  o += "\n|";
-  for (size_t i = 0; i < t.head.size(); ++i) o += i < 3 ? "---|" : "---:|";
-  o += "\n";
-  for (const auto& r : t.rows) {
-    o += "|";
-    for (const std::string& c : r) {
-      o += ' ';
-      o += md_escape(c);
-      o += " |";
-    }
-    o += "\n";
-  }
-  return o;
-}
-
-std::string table_html(const Table& t) {
-  std::string o = "<table>\n<tr>";
-  for (const std::string& h : t.head) o += "<th>" + xml_escape(h) + "</th>";
-  o += "</tr>\n";
-  for (const auto& r : t.rows) {
-    o += "<tr>";
-    for (size_t i = 0; i < r.size(); ++i) o += std::string(i < 3 ? "<td class=\"l\">" : "<td>") + xml_escape(r[i]) + "</td>";
-    o += "</tr>\n";
-  }
-  return o + "</table>\n";
 }
 
 std::string reference_text(const Tradeoff& t, const std::string& method) {
@@ -365,9 +309,8 @@ std::string svg_pareto(const Tradeoff& t, const std::string& method) {
   double d0 = std::floor(std::log10(tlo)), d1 = std::ceil(std::log10(thi));
   if (d1 <= d0) d1 = d0 + 1;
   std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << f1(W) << "\" height=\"" << f1(H) << "\" viewBox=\"0 0 " << f1(W) << " " << f1(H)
-    << "\" font-family=\"Helvetica, Arial, sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
-  o << "<text x=\"" << f1(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">" << xml_escape(method_name(method))
+  o << svg_open(W, H);
+  o << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">" << xml_escape(method_name(method))
     << " settings on " << xml_escape(t.case_name) << ": run time against error (reference: error 0)</text>\n";
   for (int panel = 0; panel < 2; ++panel) {
     const ErrorKind k = panel == 0 ? ErrorKind::capacity : ErrorKind::thrust;
@@ -384,35 +327,15 @@ std::string svg_pareto(const Tradeoff& t, const std::string& method) {
     // Five decades at most: smaller errors (round-off against the reference) sit on the bottom
     // line of the scale, their values in the tooltips and the table.
     e0 = std::max(e0, e1 - 5);
-    const auto X = [&](double s) { return ox + (std::log10(s) - d0) / (d1 - d0) * pw; };
-    const auto Y = [&](double e) {
-      if (!(e > 0)) return top + ph + zero_band * 0.6;
-      return top + (e1 - std::max(e0, std::log10(e * scale))) / (e1 - e0) * ph;
-    };
-    o << "<text x=\"" << f1(ox) << "\" y=\"" << f1(top - 12) << "\" font-size=\"13\" font-weight=\"bold\">"
-      << (k == ErrorKind::capacity ? "|capacity error| (%)" : "thrust error, largest (W = total weight)") << "</text>\n";
-    o << "<g font-size=\"11\" fill=\"#333\">\n";
-    for (double d = d0; d <= d1 + 1e-9; ++d) {
-      const double x = ox + (d - d0) / (d1 - d0) * pw;
-      o << "<line x1=\"" << f1(x) << "\" x2=\"" << f1(x) << "\" y1=\"" << f1(top) << "\" y2=\"" << f1(top + ph + zero_band)
-        << "\" stroke=\"#e6e6e6\"/><text x=\"" << f1(x) << "\" y=\"" << f1(top + ph + zero_band + 14) << "\" text-anchor=\"middle\">"
-        << decade(d) << "</text>\n";
-    }
-    for (double e = e0; e <= e1 + 1e-9; ++e) {
-      const double y = top + (e1 - e) / (e1 - e0) * ph;
-      o << "<line x1=\"" << f1(ox) << "\" x2=\"" << f1(ox + pw) << "\" y1=\"" << f1(y) << "\" y2=\"" << f1(y)
-        << "\" stroke=\"#e6e6e6\"/><text x=\"" << f1(ox - 6) << "\" y=\"" << f1(y + 4) << "\" text-anchor=\"end\">"
-        << decade(e) << "</text>\n";
-    }
-    o << "<text x=\"" << f1(ox - 6) << "\" y=\"" << f1(top + ph + zero_band * 0.6 + 4) << "\" text-anchor=\"end\">0</text>\n";
-    o << "<rect x=\"" << f1(ox) << "\" y=\"" << f1(top) << "\" width=\"" << f1(pw) << "\" height=\"" << f1(ph + zero_band)
-      << "\" fill=\"none\" stroke=\"#333\"/><line x1=\"" << f1(ox) << "\" x2=\"" << f1(ox + pw) << "\" y1=\"" << f1(top + ph) << "\" y2=\""
-      << f1(top + ph) << "\" stroke=\"#333\" stroke-dasharray=\"3,3\"/>\n";
-    o << "<text x=\"" << f1(ox + pw / 2) << "\" y=\"" << f1(top + ph + zero_band + 30) << "\" text-anchor=\"middle\" font-size=\"12\">run time (s, log scale)</text>\n";
-    o << "</g>\n";
+    const Plot plot{ox, top, pw, ph, d0, d1, e0, e1, true, true, zero_band};
+    const auto X = [&](double s) { return plot.X(s); };
+    const auto Y = [&](double e) { return plot.Y(e * scale); };
+    o << "<text x=\"" << px(ox) << "\" y=\"" << px(top - 12) << "\" font-size=\"13\" font-weight=\"bold\">"
+      << (k == ErrorKind::capacity ? "|capacity error| (%)" : "thrust error, largest (W = total weight)") << "</text>\n"
+      << svg_axes(plot, decade_ticks(int(d0), int(d1)), decade_ticks(int(e0), int(e1)), "run time (s, log scale)", "");
     // The front: joined in order of time, each point ringed and named.
     std::string pts;
-    for (size_t i : f.front) pts += f1(X(f.points[i].time)) + "," + f1(Y(f.points[i].error)) + " ";
+    for (size_t i : f.front) pts += px(X(f.points[i].time)) + "," + px(Y(f.points[i].error)) + " ";
     o << "<polyline fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.8\" points=\"" << pts << "\"/>\n";
     for (size_t i = 0; i < rows.size(); ++i) {
       const ParetoPoint& p = f.points[i];
@@ -421,17 +344,17 @@ std::string svg_pareto(const Tradeoff& t, const std::string& method) {
       const double x = X(p.time), y = Y(p.error);
       o << "<g><title>" << xml_escape(rows[i].label) << ": " << secs(p.time) << " s, " << err_text(k, p.error) << "</title>";
       if (rows[i].reference)
-        o << "<path d=\"M" << f1(x) << "," << f1(y - 7) << " L" << f1(x + 6) << "," << f1(y + 5) << " L" << f1(x - 6) << "," << f1(y + 5)
+        o << "<path d=\"M" << px(x) << "," << px(y - 7) << " L" << px(x + 6) << "," << px(y + 5) << " L" << px(x - 6) << "," << px(y + 5)
           << " z\" fill=\"#000\"/>";
       else
-        o << "<circle cx=\"" << f1(x) << "\" cy=\"" << f1(y) << "\" r=\"5\" fill=\"" << colors.at(rows[i].parameter) << "\" stroke=\"#fff\"/>";
-      if (front) o << "<circle cx=\"" << f1(x) << "\" cy=\"" << f1(y) << "\" r=\"9\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.6\"/>";
+        o << "<circle cx=\"" << px(x) << "\" cy=\"" << px(y) << "\" r=\"5\" fill=\"" << colors.at(rows[i].parameter) << "\" stroke=\"#fff\"/>";
+      if (front) o << "<circle cx=\"" << px(x) << "\" cy=\"" << px(y) << "\" r=\"9\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.6\"/>";
       o << "</g>\n";
       // Names of the front's points, turned to the left of the point near the right edge.
       if (front) {
         const double room = panel == 0 ? ox + pw + gap - 8 : ox + pw + 25;
         const bool flip = x + 11 + 5.6 * rows[i].label.size() > room;
-        o << "<text x=\"" << f1(flip ? x - 11 : x + 11) << "\" y=\"" << f1(y - 8) << "\" font-size=\"10\" fill=\"#333\""
+        o << "<text x=\"" << px(flip ? x - 11 : x + 11) << "\" y=\"" << px(y - 8) << "\" font-size=\"10\" fill=\"#333\""
           << (flip ? " text-anchor=\"end\"" : "") << ">" << xml_escape(rows[i].label) << "</text>\n";
       }
     }
@@ -441,14 +364,14 @@ std::string svg_pareto(const Tradeoff& t, const std::string& method) {
   for (size_t n = 0; n < params.size(); ++n) {
     const double x = left + (n % per_line) * 260, y = legend_top + 20 * (n / per_line);
     if (params[n] == "reference")
-      o << "<path d=\"M" << f1(x + 6) << "," << f1(y - 7) << " l6,12 h-12 z\" fill=\"#000\"/>";
+      o << "<path d=\"M" << px(x + 6) << "," << px(y - 7) << " l6,12 h-12 z\" fill=\"#000\"/>";
     else
-      o << "<circle cx=\"" << f1(x + 6) << "\" cy=\"" << f1(y - 1) << "\" r=\"5\" fill=\"" << colors.at(params[n]) << "\"/>";
-    o << "<text x=\"" << f1(x + 18) << "\" y=\"" << f1(y + 3) << "\">" << xml_escape(params[n]) << "</text>\n";
+      o << "<circle cx=\"" << px(x + 6) << "\" cy=\"" << px(y - 1) << "\" r=\"5\" fill=\"" << colors.at(params[n]) << "\"/>";
+    o << "<text x=\"" << px(x + 18) << "\" y=\"" << px(y + 3) << "\">" << xml_escape(params[n]) << "</text>\n";
   }
   const double y = legend_top + 20 * ((params.size() + per_line - 1) / per_line) + 8;
-  o << "<circle cx=\"" << f1(left + 6) << "\" cy=\"" << f1(y - 1) << "\" r=\"8\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.6\"/>"
-    << "<text x=\"" << f1(left + 18) << "\" y=\"" << f1(y + 3) << "\">Pareto-optimal (no other setting is both faster and more accurate), joined by the red line</text>\n";
+  o << "<circle cx=\"" << px(left + 6) << "\" cy=\"" << px(y - 1) << "\" r=\"8\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.6\"/>"
+    << "<text x=\"" << px(left + 18) << "\" y=\"" << px(y + 3) << "\">Pareto-optimal (no other setting is both faster and more accurate), joined by the red line</text>\n";
   o << "</g>\n</svg>\n";
   return o.str();
 }
@@ -477,41 +400,42 @@ const char* kDefinitions =
 
 }  // namespace
 
-std::string tradeoff_markdown(const Tradeoff& t) {
-  std::ostringstream o;
-  o << "# Speed against accuracy: " << md_escape(t.case_name) << "\n\n";
-  if (!t.command.empty()) o << "Made with: " << md_escape(t.command) << "\n\n";
-  o << md_escape(intro_text(t)) << "\n\n## Which settings buy most accuracy per second\n\n";
-  for (const std::string& s : summary_lines(t)) o << "- " << md_escape(s) << "\n";
+namespace {
+
+// The report for both media: the Markdown links the Pareto figures, the page inlines them.
+Document tradeoff_document(const Tradeoff& t) {
+  Document d;
+  d.title = "Speed against accuracy: " + t.case_name;
+  if (!t.command.empty()) d.paragraph({"Made with: ", Cell(t.command, CellStyle::code)});
+  d.paragraph({intro_text(t)});
+  d.heading(2, {"Which settings buy most accuracy per second"});
+  std::vector<Item> items;
+  for (const std::string& s : summary_lines(t)) items.push_back({{s}, {}});
+  d.list(std::move(items));
   for (const std::string& m : t.methods) {
     if (rows_of(t, m).empty()) continue;
-    o << "\n## " << method_name(m) << "\n\n![" << method_name(m) << ": run time against error](figures/pareto-" << m << ".svg)\n\n"
-      << table_md(method_table(t, m));
+    d.heading(2, {method_name(m)});
+    d.figure("figures/pareto-" + m + ".svg", method_name(m) + ": run time against error", svg_pareto(t, m));
+    d.table(method_table(t, m));
   }
-  o << "\n## Definitions\n\n" << md_escape(kDefinitions) << "\n\nThe numbers: `tradeoff.json`, `tradeoff.csv`.\n";
-  return o.str();
+  d.heading(2, {"Definitions"});
+  d.paragraph({kDefinitions});
+  d.paragraph({"The numbers: ", Cell("tradeoff.json", CellStyle::code), ", ", Cell("tradeoff.csv", CellStyle::code), "."});
+  return d;
 }
 
+}  // namespace
+
+std::string tradeoff_markdown(const Tradeoff& t) { return markdown(tradeoff_document(t)); }
+
 std::string tradeoff_html(const Tradeoff& t) {
-  std::ostringstream o;
+  const Document d = tradeoff_document(t);
   // No script at all: the policy forbids every script and every fetch.
-  o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-    << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">\n<title>"
-    << xml_escape(t.case_name) << ": speed against accuracy</title>\n<style>\n"
-    << "body{font-family:Helvetica,Arial,sans-serif;max-width:1100px;margin:1em auto;padding:0 1em;color:#222}\n"
-       "table{border-collapse:collapse;margin:0.5em 0;font-size:14px}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
-       "td.l{text-align:left}th{background:#f3f3f3}\nsvg{max-width:100%;height:auto}\n</style>\n</head>\n<body>\n";
-  o << "<h1>Speed against accuracy: " << xml_escape(t.case_name) << "</h1>\n";
-  if (!t.command.empty()) o << "<p>Made with: <code>" << xml_escape(t.command) << "</code></p>\n";
-  o << "<p>" << xml_escape(intro_text(t)) << "</p>\n<h2>Which settings buy most accuracy per second</h2>\n<ul>\n";
-  for (const std::string& s : summary_lines(t)) o << "<li>" << xml_escape(s) << "</li>\n";
-  o << "</ul>\n";
-  for (const std::string& m : t.methods) {
-    if (rows_of(t, m).empty()) continue;
-    o << "<h2>" << method_name(m) << "</h2>\n" << svg_pareto(t, m) << table_html(method_table(t, m));
-  }
-  o << "<h2>Definitions</h2>\n<p>" << xml_escape(kDefinitions) << "</p>\n</body>\n</html>\n";
-  return o.str();
+  HtmlPage page;
+  page.title = t.case_name + ": speed against accuracy";
+  page.body = html_body(d);
+  page.max_width_px = 1100;
+  return html_page(page);
 }
 
 void write_tradeoff(const std::string& dir, const Tradeoff& t) {

@@ -73,7 +73,7 @@ TEST(CompareReport, CaseTextIsEscapedEverywhere) {
   RunResult a, b;
   const Report r = markup_report(c, a, b);
   const auto figs = report_figures(r);
-  const std::string md = report_markdown(r, figs), html = report_html(r, 10);
+  const std::string md = report_markdown(r, figs), html = report_html(r, figs, 10);
   for (const std::string* text : {&md, &html}) {
     EXPECT_EQ(text->find("<script>document"), std::string::npos);
     EXPECT_EQ(text->find("<img"), std::string::npos);

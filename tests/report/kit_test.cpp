@@ -1,0 +1,134 @@
+// The report kit: escaping by the rules of each format (CommonMark, XML), tables whose two
+// renderings hold the same cells, a document whose Markdown and HTML carry the same text, and
+// axes whose ticks are exact multiples of a nice step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "report/document.hpp"
+#include "report/escape.hpp"
+#include "report/format.hpp"
+#include "report/html.hpp"
+#include "report/svg.hpp"
+#include "report/table.hpp"
+
+namespace masonry {
+namespace {
+
+size_t count(const std::string& s, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(ReportEscape, MarkupFromACaseIsText) {
+  // XML: the five predefined entities (XML 1.0, section 4.6).
+  EXPECT_EQ(xml_escape("<b a=\"1\">'&'</b>"), "&lt;b a=&quot;1&quot;&gt;&#39;&amp;&#39;&lt;/b&gt;");
+  // Markdown: no raw HTML, no emphasis, code, link or table cell break; one line.
+  EXPECT_EQ(md_escape("<i>a|b</i>"), "&lt;i&gt;a\\|b&lt;/i&gt;");
+  EXPECT_EQ(md_escape("*x* _y_ `z` [l](u)"), "\\*x\\* \\_y\\_ \\`z\\` \\[l\\](u)");
+  EXPECT_EQ(md_escape("a\nb"), "a b");
+  EXPECT_EQ(md_escape("# not a heading, #2 stays"), "\\# not a heading, #2 stays");
+  // A code span cannot hold a backtick, and a table cell no bar.
+  EXPECT_EQ(md_code("a`b|c"), "a'b/c");
+}
+
+TEST(ReportFormat, NoNanAndNoExponent) {
+  EXPECT_EQ(fmt::g(NAN), "n/a");
+  EXPECT_EQ(fmt::mm(0.2784), "278");
+  EXPECT_EQ(fmt::mm(0.2784, 1), "278.4");
+  EXPECT_EQ(fmt::pct(-0.0111), "-1.1%");
+  EXPECT_EQ(fmt::pct(0.00126, 2), "+0.13%");
+  EXPECT_EQ(fmt::secs(0.01234), "0.0123");
+  EXPECT_EQ(fmt::secs(2222.4), "2222");
+  EXPECT_EQ(fmt::px(INFINITY), "0.0");  // a coordinate never breaks the drawing
+  EXPECT_EQ(fmt::kn(19350), "19.4");
+}
+
+TEST(ReportTable, NumbersRightTextLeftInBothRenderings) {
+  Table t;
+  t.head = {"run", "capacity (m)", "difference"};
+  t.rows = {{"PRD", "0.278", "-"}, {"DEM <x>", "0.275", "-1.1%"}, {"failed", "n/a", Cell("no", CellStyle::strong)}};
+  const std::vector<Align> a = alignment(t);
+  EXPECT_EQ(a[0], Align::left);
+  EXPECT_EQ(a[1], Align::left);  // "n/a" is text: the column is not all numbers
+  EXPECT_EQ(a[2], Align::left);  // "no"
+  t.rows.pop_back();
+  EXPECT_EQ(alignment(t)[1], Align::right);
+  EXPECT_EQ(alignment(t)[2], Align::right);  // a dash is no text
+  const std::string md = markdown(t), h = html(t);
+  EXPECT_NE(md.find("|---|---:|---:|"), std::string::npos) << md;
+  EXPECT_EQ(count(md, "\n"), 2 + t.rows.size() + 1);  // head, rule, rows, blank line
+  EXPECT_NE(md.find("DEM &lt;x&gt;"), std::string::npos);
+  EXPECT_NE(h.find("<td class=\"l\">DEM &lt;x&gt;</td><td>0.275</td><td>-1.1%</td>"), std::string::npos) << h;
+  // Given alignments win over detection.
+  t.align = {Align::right, Align::left, Align::left};
+  EXPECT_NE(markdown(t).find("|---:|---|---|"), std::string::npos);
+}
+
+TEST(ReportDocument, BothMediaCarryTheSameTextEachItsOwnParts) {
+  Document d;
+  d.title = "arch <1>";
+  d.paragraph({"Made with ", Cell("masonry `x`", CellStyle::code), ", see ", Cell("a run", CellStyle::link, "runs/a/results.json")});
+  d.heading(2, {"Hinges"});
+  d.list({{{"PRD: v0/v1:A"}, {{"sub item"}}}});
+  d.paragraph({"only in the Markdown"}, Medium::markdown);
+  d.raw_html("<div id=\"slider\"></div>");
+  d.figure("figures/f.svg", "a figure", "<svg></svg>");
+  const std::string md = markdown(d), h = html_body(d);
+  EXPECT_EQ(md.rfind("# arch &lt;1&gt;\n\n", 0), 0u) << md;
+  EXPECT_NE(h.find("<h1>arch &lt;1&gt;</h1>"), std::string::npos);
+  EXPECT_NE(md.find("Made with `masonry 'x'`, see [a run](runs/a/results.json)"), std::string::npos) << md;
+  EXPECT_NE(h.find("Made with <code>masonry `x`</code>, see <a href=\"runs/a/results.json\">a run</a>"), std::string::npos) << h;
+  EXPECT_NE(md.find("## Hinges\n\n- PRD: v0/v1:A\n  - sub item\n"), std::string::npos) << md;
+  EXPECT_NE(h.find("<li>PRD: v0/v1:A<ul><li>sub item</li></ul></li>"), std::string::npos) << h;
+  EXPECT_NE(md.find("only in the Markdown"), std::string::npos);
+  EXPECT_EQ(h.find("only in the Markdown"), std::string::npos);
+  EXPECT_EQ(md.find("slider"), std::string::npos);
+  EXPECT_NE(h.find("<div id=\"slider\"></div>"), std::string::npos);
+  EXPECT_NE(md.find("![a figure](figures/f.svg)"), std::string::npos);
+  EXPECT_NE(h.find("<svg></svg><figcaption>a figure</figcaption>"), std::string::npos);
+}
+
+TEST(ReportHtml, NoScriptRunsWithoutTheNonce) {
+  HtmlPage p;
+  p.title = "<t>";
+  p.body = "<p>x</p>\n";
+  const std::string plain = html_page(p);
+  EXPECT_NE(plain.find("content=\"default-src 'none'; style-src 'unsafe-inline'\""), std::string::npos);
+  EXPECT_EQ(plain.find("script-src"), std::string::npos);
+  EXPECT_NE(plain.find("<title>&lt;t&gt;</title>"), std::string::npos);
+  p.script_nonce = script_nonce();
+  EXPECT_EQ(p.script_nonce.size(), 24u);
+  EXPECT_NE(script_nonce(), p.script_nonce);  // fresh per page
+  EXPECT_NE(html_page(p).find("script-src 'nonce-" + p.script_nonce + "'"), std::string::npos);
+}
+
+TEST(ReportSvg, TicksAreExactMultiplesOfANiceStep) {
+  EXPECT_DOUBLE_EQ(nice_step(1.0, 5), 0.2);
+  EXPECT_DOUBLE_EQ(nice_step(0.93, 8), 0.1);
+  EXPECT_DOUBLE_EQ(nice_step(270, 6), 50);
+  const Ticks t = linear_ticks(-0.03, 0.07, 5, 3);
+  EXPECT_DOUBLE_EQ(t.step, 0.02);
+  ASSERT_EQ(t.at.size(), 5u);  // -0.02, 0, 0.02, 0.04, 0.06: the multiples inside the range
+  for (size_t k = 0; k < t.at.size(); ++k) EXPECT_NEAR(std::remainder(t.at[k], t.step), 0.0, 1e-15);
+  // The tick at zero is zero, not round-off, and reads "0".
+  bool zero = false;
+  for (size_t k = 0; k < t.at.size(); ++k)
+    if (t.at[k] == 0.0) zero = t.label[k] == "0";
+  EXPECT_TRUE(zero);
+  const Ticks d = decade_ticks(-5, 3);
+  EXPECT_EQ(d.label.front(), "1e-5");
+  EXPECT_EQ(d.label[2], "0.001");
+  EXPECT_EQ(d.label[5], "1");
+  EXPECT_EQ(d.label.back(), "1000");
+  // A log plot puts a decade at the same distance whatever its place; zeros go in the band.
+  const Plot p{0, 0, 300, 300, -3, 0, -3, 0, true, true, 30};
+  EXPECT_NEAR(p.X(0.01) - p.X(0.001), p.X(1) - p.X(0.1), 1e-9);
+  EXPECT_GT(p.Y(0.0), p.top + p.height);
+  EXPECT_LT(p.Y(0.0), p.top + p.height + p.band);
+}
+
+}  // namespace
+}  // namespace masonry
