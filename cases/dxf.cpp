@@ -315,15 +315,11 @@ int snap_pieces(std::vector<Piece>& ps, double snap) {
 // contact tolerance) or that poke into it: drafting errors a user wants to hear about.
 std::vector<std::string> near_joints(const std::vector<Piece>& ps, double tol, double near) {
   std::vector<std::string> out;
-  std::vector<std::pair<Vec2, Vec2>> box;
-  for (const Piece& k : ps) {
-    Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-    for (const Vec2& p : k.v) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    box.push_back({lo, hi});
-  }
+  std::vector<Bounds> box;
+  for (const Piece& k : ps) box.push_back(bounds(k.v));
   for (size_t i = 0; i < ps.size(); ++i)
     for (size_t j = i + 1; j < ps.size(); ++j) {
-      if ((box[i].first - box[j].second).maxCoeff() > near || (box[j].first - box[i].second).maxCoeff() > near) continue;
+      if ((box[i].lo - box[j].hi).maxCoeff() > near || (box[j].lo - box[i].hi).maxCoeff() > near) continue;
       // The nearest vertex of either block to the other's outline.
       double gap = INFINITY;
       bool inside = false;

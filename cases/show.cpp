@@ -26,10 +26,9 @@ std::string num(double x) {
 
 std::string case_svg(const Case& c) {
   // Drawing coordinates: x right, y up in the case; SVG's y points down, so y is negated.
-  Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-  for (const Block& b : c.blocks)
-    for (const Vec2& v : b.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  const double L = scene_size(c), margin = 0.08 * L;
+  const Bounds box = scene_bounds(c);
+  const Vec2 lo = box.lo, hi = box.hi;
+  const double L = box.size(), margin = 0.08 * L;
   const double font = 0.025 * L, stroke = 0.002 * L;
   auto pt = [](const Vec2& p) { return num(p.x()) + "," + num(-p.y()); };
   std::ostringstream o;

@@ -198,29 +198,18 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
 
 DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs) {
   DrawFrame f;
-  Vec2 lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max()), hi = -lo;
-  bool any = false;
+  Bounds box;
   for (const RunResult* r : runs)
     for (const StepRecord* s : stable_records(*r)) {
       if (s->poses.size() != c.blocks.size()) continue;
       const Placer pl(c, *s);
       for (size_t b = 0; b < c.blocks.size(); ++b)
-        for (const Vec2& v : c.blocks[b].vertices) {
-          const Vec2 p = pl.at(int(b), v);
-          if (!p.allFinite()) continue;
-          lo = lo.cwiseMin(p);
-          hi = hi.cwiseMax(p);
-          any = true;
-        }
+        for (const Vec2& v : c.blocks[b].vertices)
+          if (const Vec2 p = pl.at(int(b), v); p.allFinite()) box.add(p);
       f.weight = r->total_weight > 0 ? r->total_weight : f.weight;
     }
-  if (!any)
-    for (const Block& b : c.blocks)
-      for (const Vec2& v : b.vertices) {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-      }
-  const double size = std::max(hi.x() - lo.x(), hi.y() - lo.y());
+  if (box.empty()) box = scene_bounds(c);
+  const double size = box.size();
   // Forces drawn at 0.35 scene sizes per total weight: an arch's thrust (0.2-0.5 W) reads as a
   // clear segment without covering the blocks.
   f.force_len = 0.35 * size;
@@ -233,12 +222,12 @@ DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs) {
         if (b < 0 || !reaction_point(*r, *s, b, p)) continue;
         const Vec2 tail = p - re.force / f.weight * f.force_len;
         if (!tail.allFinite()) continue;
-        lo = lo.cwiseMin(tail - Vec2(0.02 * size, 0.09 * size));
-        hi = hi.cwiseMax(tail);
+        box.add(tail - Vec2(0.02 * size, 0.09 * size));
+        box.add(tail);
       }
   const double pad = 0.03 * size;
-  f.lo = lo - Vec2(pad, pad);
-  f.hi = hi + Vec2(pad, pad);
+  f.lo = box.lo - Vec2(pad, pad);
+  f.hi = box.hi + Vec2(pad, pad);
   return f;
 }
 

@@ -75,15 +75,20 @@ double polar_moment(const std::vector<Vec2>& p) {
   return std::abs(ixx / 12.0);
 }
 
-double scene_size(const Case& c) {
-  Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-  for (const Block& b : c.blocks)
-    for (const Vec2& v : b.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-  return (hi - lo).maxCoeff();
+Bounds bounds(const std::vector<Vec2>& points) {
+  Bounds b;
+  for (const Vec2& p : points) b.add(p);
+  return b;
 }
+
+Bounds scene_bounds(const Case& c) {
+  Bounds b;
+  for (const Block& k : c.blocks)
+    for (const Vec2& v : k.vertices) b.add(v);
+  return b;
+}
+
+double scene_size(const Case& c) { return scene_bounds(c).size(); }
 
 double block_mass(const Block& b) { return b.density * std::abs(signed_area(b.vertices)) * b.depth; }
 

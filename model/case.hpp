@@ -135,6 +135,20 @@ double signed_area(const std::vector<Vec2>& poly);
 Vec2 centroid(const std::vector<Vec2>& poly);
 // Second moment of area about the centroid (polar), m^4.
 double polar_moment(const std::vector<Vec2>& poly);
+// An axis-aligned bounding box; empty (lo > hi) until a point is added.
+struct Bounds {
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  void add(const Vec2& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  bool empty() const { return !(lo.x() <= hi.x()); }
+  Vec2 extent() const { return hi - lo; }
+  double size() const { return extent().maxCoeff(); }  // the larger side
+};
+Bounds bounds(const std::vector<Vec2>& points);
+// Every block's vertices, as the case gives them.
+Bounds scene_bounds(const Case& c);
 // Largest extent of all blocks' bounding box: the scene size used to scale tolerances.
 double scene_size(const Case& c);
 // Mass (kg) and weight (N) of a block: density * area * depth (* gravity).

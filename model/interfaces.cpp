@@ -71,13 +71,8 @@ std::string corner_name(const Case& c, int i, int j, int corner) {
 
 std::vector<Interface> detect_interfaces(const Case& c, double tol) {
   // Sweep along the longer axis of the scene.
-  Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-  for (const Block& b : c.blocks)
-    for (const Vec2& v : b.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-  const int ax = (hi - lo).x() >= (hi - lo).y() ? 0 : 1, ay = 1 - ax;
+  const Vec2 extent = scene_bounds(c).extent();
+  const int ax = extent.x() >= extent.y() ? 0 : 1, ay = 1 - ax;
 
   std::vector<Edge> edges;
   for (size_t bi = 0; bi < c.blocks.size(); ++bi) {

@@ -37,19 +37,6 @@ bool segments_cross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s, 
   return t > et && t < 1 - et && u > eu && u < 1 - eu;
 }
 
-struct Box {
-  Vec2 lo, hi;
-};
-
-Box bounds(const std::vector<Vec2>& p) {
-  Box b{Vec2(INFINITY, INFINITY), Vec2(-INFINITY, -INFINITY)};
-  for (const Vec2& v : p) {
-    b.lo = b.lo.cwiseMin(v);
-    b.hi = b.hi.cwiseMax(v);
-  }
-  return b;
-}
-
 // A point of `a` lies inside `b` deeper than tol, or their edges cross.
 bool polygons_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol) {
   auto deep_inside = [&](const Vec2& p, const std::vector<Vec2>& poly) {
@@ -86,7 +73,7 @@ void validate_geometry(const Case& c) {
     if (n < 3) fail(b, "field 'vertices': fewer than 3 vertices");
     for (const Vec2& p : v)
       if (!std::isfinite(p.x()) || !std::isfinite(p.y())) fail(b, "field 'vertices': not a finite number");
-    const Box bx = bounds(v);
+    const Bounds bx = bounds(v);
     const double size = (bx.hi - bx.lo).maxCoeff();
     for (size_t k = 0; k < n; ++k)
       if ((v[(k + 1) % n] - v[k]).norm() <= 1e-12 * size)
@@ -126,14 +113,14 @@ void validate_geometry(const Case& c) {
   }
 
   // Overlaps: sort by the lower x of the bounding box, compare boxes that overlap in x.
-  std::vector<std::pair<Box, size_t>> boxes;
+  std::vector<std::pair<Bounds, size_t>> boxes;
   for (size_t i = 0; i < c.blocks.size(); ++i) boxes.push_back({bounds(c.blocks[i].vertices), i});
   std::sort(boxes.begin(), boxes.end(), [](const auto& x, const auto& y) {
     return x.first.lo.x() < y.first.lo.x() || (x.first.lo.x() == y.first.lo.x() && x.second < y.second);
   });
   for (size_t k = 0; k < boxes.size(); ++k)
     for (size_t m = k + 1; m < boxes.size() && boxes[m].first.lo.x() < boxes[k].first.hi.x() - tol; ++m) {
-      const Box &p = boxes[k].first, &q = boxes[m].first;
+      const Bounds &p = boxes[k].first, &q = boxes[m].first;
       if (q.lo.y() >= p.hi.y() - tol || q.hi.y() <= p.lo.y() + tol) continue;
       const size_t i = std::min(boxes[k].second, boxes[m].second), j = std::max(boxes[k].second, boxes[m].second);
       if (polygons_overlap(c.blocks[i].vertices, c.blocks[j].vertices, tol))
