@@ -1,5 +1,7 @@
 #include "compare/svg.hpp"
 
+#include "model/energy.hpp"
+
 #include "report/escape.hpp"
 #include "report/format.hpp"
 #include "report/svg.hpp"
@@ -31,13 +33,7 @@ struct Placer {
   Placer(const Case& cc, const StepRecord& ss) : c(cc), s(ss) {
     for (const Block& b : c.blocks) c0.push_back(centroid(b.vertices));
   }
-  Vec2 at(int b, const Vec2& p) const {
-    if (b < 0 || b >= int(s.poses.size())) return p;
-    const Pose& q = s.poses[b];
-    const double co = std::cos(q.angle), si = std::sin(q.angle);
-    const Vec2 r = p - c0[b];
-    return Vec2(q.x + co * r.x() - si * r.y(), q.y + si * r.x() + co * r.y());
-  }
+  Vec2 at(int b, const Vec2& p) const { return b < 0 || b >= int(s.poses.size()) ? p : placed(c0[b], s.poses[b], p); }
 };
 
 // World -> pixel mapping of one panel.

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "dem/model_impl.hpp"
+#include "model/energy.hpp"
 
 namespace masonry {
 
@@ -157,17 +158,8 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
   const Impl& m = *p_;
   StepRecord r;
   r.d = m.d_now;
-  double eg = 0, wl = 0;
-  for (int b = 0; b < m.nb; ++b) {
-    r.poses.push_back({m.pos[b].x(), m.pos[b].y(), m.ang[b]});
-    if (!m.support[b]) eg += m.mass[b] * m.c.gravity * (m.pos[b].y() - m.c0[b].y());
-  }
-  for (size_t l = 0; l < m.load_block.size(); ++l) {
-    const int b = m.load_block[l];
-    const Vec2 x = m.pos[b] + rotate(m.load_r[l], std::cos(m.ang[b]), std::sin(m.ang[b]));
-    wl += m.load_force[l].dot(x - (m.c0[b] + m.load_r[l]));
-  }
-  r.energy = eg - wl;
+  for (int b = 0; b < m.nb; ++b) r.poses.push_back({m.pos[b].x(), m.pos[b].y(), m.ang[b]});
+  r.energy = potential_energy(m.c, r.poses);
 
   // Reactions: what the structure receives from each support, moments about the support's
   // `about` point where it moves (its centroid when fixed), current configuration.

@@ -188,7 +188,6 @@ Increment support_increment(const Model& m, int b, double h);
 std::vector<JointInfo> joint_infos(const Model& m);
 std::vector<Pose> poses(const Model& m);
 void record_corners(const Model& m, StepRecord& rec);
-double energy(const Model& m);
 void gaps_and_rates(const Model& m, double h, double h_open, std::vector<double>& gap, std::vector<double>& rate);
 std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, const std::vector<double>& rate,
                                double h_lp, double h, double h_ref);

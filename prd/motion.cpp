@@ -2,6 +2,8 @@
 // configuration records.
 #include "prd/internal.hpp"
 
+#include "model/energy.hpp"
+
 namespace masonry::prd_detail {
 
 // Rigid increment (u at point c, rotation th) applied as a finite rotation about its pole:
@@ -60,13 +62,6 @@ void record_corners(const Model& m, StepRecord& rec) {
   }
   for (size_t k = 0; k < cracked.size(); ++k)
     if (cracked[k]) rec.cracked.push_back(static_cast<int>(k));
-}
-
-double energy(const Model& m) {
-  double e = 0;
-  for (size_t b = 0; b < m.cen.size(); ++b) e += m.weight[b] * (m.cen[b].y() - m.c0[b].y());
-  for (const Load& l : m.c->loads) e -= l.force.dot(m.pos(l.block, l.point) - l.point);
-  return e;
 }
 
 
@@ -151,7 +146,7 @@ StepRecord configuration_record(const Model& m, int index, double d) {
   rec.index = index;
   rec.d = d;
   rec.poses = poses(m);
-  rec.energy = energy(m);
+  rec.energy = potential_energy(*m.c, rec.poses);
   record_corners(m, rec);
   return rec;
 }
