@@ -1,8 +1,8 @@
 // `masonry compare` and `masonry demo`: thin front ends that run PRD and DEM on one case (or read
 // finished runs back), then hand the RunResults to the comparison and its reports.
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -10,11 +10,10 @@
 
 #include "app/command.hpp"
 #include "app/flags.hpp"
-#include "compare/compare.hpp"
-#include "dem/dem.hpp"
 #include "cases/generators.hpp"
-#include "prd/prd.hpp"
+#include "compare/compare.hpp"
 #include "compare/report.hpp"
+#include "runs/run.hpp"
 
 namespace masonry {
 
@@ -83,31 +82,25 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       for (size_t q = 0; q < runs.size(); ++q) runs[q].label += " " + std::filesystem::path(o.runs[q]).filename().string();
   } else {
     results.reserve(1 + std::max<size_t>(1, o.frictions.size()));
-    const PrdSettings ps = PrdSettings::from_case(c);
-    const std::string prd_dir = o.out_dir + "/prd";
     progress(o.quiet, "compare: PRD on " + c.name + " ...\n");
-    results.push_back(prd_run(c, ps, {}));
-    write_results(prd_dir, results.back(), c);
+    results.push_back(run_case(c, Method::prd, {o.out_dir + "/prd", {}}));
     progress(o.quiet, "compare: PRD capacity " + num_text(results.back().capacity) + " m, " + num_text(results.back().timing.total_s) + " s\n");
     runs.push_back({"PRD", nullptr, "prd"});
     std::vector<double> phis = o.frictions;
     if (phis.empty()) phis.push_back(c.dem.friction_angle);
     const Case dem_case = o.dem_step ? with_option(c, "motion.step", *o.dem_step) : c;
     for (double phi : phis) {
-      const DemSettings ds = DemSettings::from_case(with_option(dem_case, "dem.friction_angle", phi));
+      const Case dc = with_option(dem_case, "dem.friction_angle", phi);
       const std::string sub = phis.size() == 1 ? "dem" : "dem-phi" + num_text(phi);
       const std::string dir = o.out_dir + "/" + sub;
       progress(o.quiet, "compare: DEM (friction " + num_text(phi) + " deg) on " + c.name + " ...\n");
       int last_step = -1;
-      results.push_back(dem_run(c, ds, [&](const RunResult& part) {
-        // Written as it goes, so a long DEM run that is stopped keeps its finished steps.
-        write_results(dir, part, c);
-        if (!part.steps.empty() && part.steps.back().index % 10 == 0 && part.steps.back().index != last_step) {
-          last_step = part.steps.back().index;
-          progress(o.quiet, "  dem: d = " + num_text(part.steps.back().d) + " m\n");
-        }
-      }));
-      write_results(dir, results.back(), c);
+      results.push_back(run_case(dc, Method::dem, {dir, [&](const RunResult& part) {
+                                   if (!part.steps.empty() && part.steps.back().index % 10 == 0 && part.steps.back().index != last_step) {
+                                     last_step = part.steps.back().index;
+                                     progress(o.quiet, "  dem: d = " + num_text(part.steps.back().d) + " m\n");
+                                   }
+                                 }}));
       progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " m, " + num_text(results.back().timing.total_s) + " s\n");
       runs.push_back({dem_label(phi), nullptr, sub});
     }

@@ -1,18 +1,18 @@
 // `masonry dem CASE --out DIR`: the DEM capacity run, written as it goes.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
-
-#include <filesystem>
 #include <mutex>
 
 #include "app/command.hpp"
 #include "app/flags.hpp"
 #include "compare/convergence.hpp"
 #include "dem/dem.hpp"
-#include "model/interfaces.hpp"
-#include "prd/prd.hpp"
 #include "dem/variants.hpp"
+#include "model/interfaces.hpp"
+#include "runs/parallel.hpp"
+#include "runs/run.hpp"
 
 namespace masonry {
 
@@ -34,22 +34,16 @@ int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
   study.spread_limit = o.spread_limit;
   study.prd_limit = o.prd_limit;
   study.scene = &c;
-  study.prd = prd_run(c, PrdSettings::from_case(c), {});
+  study.prd = run_case(c, Method::prd);
   if (located(study.prd->status)) study.prd_capacity = study.prd->capacity;
   const std::vector<DemVariant> variants = convergence_variants(base);
   std::mutex io;
-  const std::vector<RunResult> runs = run_variants(
-      c, variants, o.jobs,
-      [&](size_t i, const RunResult& part) {
-        write_results((std::filesystem::path(o.out_dir) / variants[i].name).string(), part, c);
-      },
-      [&](size_t i, const RunResult& r) {
-        write_results((std::filesystem::path(o.out_dir) / variants[i].name).string(), r, c);
-        if (o.quiet) return;
-        std::lock_guard<std::mutex> lock(io);
-        std::fprintf(stderr, "dem convergence: %-15s %s, capacity %.6g m, %.3g s CPU\n", variants[i].name.c_str(), status_name(r.status),
-                     r.capacity, r.timing.total_s);
-      });
+  const std::vector<RunResult> runs = run_variants(c, variants, o.jobs, o.out_dir, [&](size_t i, const RunResult& r) {
+    if (o.quiet) return;
+    std::lock_guard<std::mutex> lock(io);
+    std::fprintf(stderr, "dem convergence: %-15s %s, capacity %.6g m, %.3g s CPU\n", variants[i].name.c_str(), status_name(r.status),
+                 r.capacity, r.timing.total_s);
+  });
   for (size_t i = 0; i < variants.size(); ++i) study.entries.push_back({variants[i].name, variants[i].what, runs[i]});
   write_file_atomic((std::filesystem::path(o.out_dir) / "convergence.json").string(), convergence_json(study).dump(1) + "\n");
   const std::string md = convergence_markdown(study);
@@ -113,8 +107,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    const DemSettings s = DemSettings::from_case(c);
                    if (!o->quiet) warn_dem_cost(c, s);
                    if (o->convergence) return run_convergence(c, s, *o);
-                   const RunResult r = dem_run(c, s, [&](const RunResult& part) {
-                     write_results(o->out_dir, part, c);
+                   const RunResult r = run_dem(c, s, {o->out_dir, [&](const RunResult& part) {
                      if (o->quiet || part.steps.empty()) return;
                      const StepRecord& st = part.steps.back();
                      // With the time the remaining increments would take at this pace if the run went to
@@ -124,8 +117,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                      std::fprintf(stderr, "dem: step %d d=%.6g m  cycles %lld (total %lld)  unbalanced %.2e  %s  %.0f s, at most %.0f s more\n",
                                   st.index, st.d, st.extra.value("cycles", 0LL), part.timing.cycles,
                                   st.extra.value("unbalanced_ratio", 0.0), st.extra.value("hold_end", std::string("?")).c_str(), t, left);
-                   });
-                   write_results(o->out_dir, r, c);
+                   }});
                    if (!o->quiet)
                      std::fprintf(stderr, "dem: %s, capacity %.6g m after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n",
                                   status_name(r.status), r.capacity, r.stable_steps, r.timing.cycles, r.timing.total_s,

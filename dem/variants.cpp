@@ -1,10 +1,8 @@
 #include "dem/variants.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <sstream>
-#include <thread>
 
 namespace masonry {
 
@@ -56,27 +54,6 @@ std::vector<DemVariant> convergence_variants(const DemSettings& base) {
     v.push_back(fr);
   }
   return v;
-}
-
-std::vector<RunResult> run_variants(const Case& c, const std::vector<DemVariant>& variants, int jobs,
-                                    const std::function<void(size_t, const RunResult&)>& on_step,
-                                    const std::function<void(size_t, const RunResult&)>& on_done) {
-  std::vector<RunResult> out(variants.size());
-  std::atomic<size_t> next{0};
-  auto worker = [&]() {
-    for (size_t i = next++; i < variants.size(); i = next++) {
-      out[i] = dem_run(c, variants[i].settings, [&](const RunResult& part) {
-        if (on_step) on_step(i, part);
-      });
-      if (on_done) on_done(i, out[i]);
-    }
-  };
-  const int n = std::max(1, std::min<int>(jobs, static_cast<int>(variants.size())));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < n; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  return out;
 }
 
 }  // namespace masonry

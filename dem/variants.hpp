@@ -1,10 +1,9 @@
 // The DEM's convergence study: the same case at the default settings and at settings that must
 // not change a quasi-static answer (loading twice as slow, half the increment, another damping,
-// half the time step, joints three times stiffer and softer, more friction), run in parallel
-// threads. Reading the spread is compare/convergence.hpp's business.
+// half the time step, joints three times stiffer and softer, more friction). Running them is
+// runs/parallel.hpp's business, reading the spread compare/convergence.hpp's.
 #pragma once
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,13 +19,5 @@ struct DemVariant {
 
 // The default first, then one variation per setting that must not matter.
 std::vector<DemVariant> convergence_variants(const DemSettings& base);
-
-// Runs every variant (at most `jobs` at a time, each on its own thread) and returns the results
-// in the variants' order. `on_step(i, partial)` is called from variant i's thread after each of
-// its records (for writing results as they go); `on_done(i, result)` once it ends. Both may run
-// concurrently for different i.
-std::vector<RunResult> run_variants(const Case& c, const std::vector<DemVariant>& variants, int jobs,
-                                    const std::function<void(size_t, const RunResult&)>& on_step = {},
-                                    const std::function<void(size_t, const RunResult&)>& on_done = {});
 
 }  // namespace masonry

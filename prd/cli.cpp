@@ -1,32 +1,17 @@
 // `masonry prd` and `masonry check`: thin front ends over prd_run and prd_check.
 #include <chrono>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "app/command.hpp"
 #include "app/flags.hpp"
 #include "prd/prd.hpp"
+#include "runs/run.hpp"
 
 namespace masonry {
 
 namespace {
-
-// Rewrites the results after each step, but spends at most about a fifth of the run's time on
-// it: a long run with large files is written less often, a short one every step. The final
-// call always writes.
-struct ThrottledWriter {
-  std::string dir;
-  const Case* c;
-  std::chrono::steady_clock::time_point last{};
-  double last_cost = 0;
-  void operator()(const RunResult& r, bool force) {
-    const auto now = std::chrono::steady_clock::now();
-    if (!force && std::chrono::duration<double>(now - last).count() < 4 * last_cost) return;
-    write_results(dir, r, *c);
-    last = std::chrono::steady_clock::now();
-    last_cost = std::chrono::duration<double>(last - now).count();
-  }
-};
 
 // Warns, before the LP is built, when the case is large enough for the analysis to take a
 // while: the simplex makes about two pivots per free block on a fresh LP, each costing in
@@ -117,15 +102,10 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                      const Case c = settings->apply(load_case(*path));
                      PrdSettings s = PrdSettings::from_case(c);
                      if (*friction >= 0) s.sliding_check = true;
-                     ThrottledWriter w{*dir, &c};
                      warn_lp_cost(c, "prd", 2e-7);
                      Progress progress{};
                      progress.max_steps = s.max_steps;
-                     RunResult r = prd_run(c, s, [&](const RunResult& x) {
-                       w(x, false);
-                       progress(x);
-                     });
-                     w(r, true);
+                     const RunResult r = run_prd(c, s, {*dir, std::ref(progress)});
                      std::cerr << "prd: " << printable(c.name) << ": " << status_name(r.status) << (r.message.empty() ? "" : " (" + r.message + ")")
                                << ", capacity " << r.capacity << " m after " << r.stable_steps << " steps, "
                                << r.timing.total_s << " s (" << r.timing.lp_solves << " LPs); results in " << *dir << "\n";

@@ -11,8 +11,7 @@
 #include <sstream>
 #include <thread>
 
-#include "dem/dem.hpp"
-#include "prd/prd.hpp"
+#include "runs/run.hpp"
 #include "sweep/runner.hpp"
 
 namespace masonry {
@@ -24,11 +23,10 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run) {
   row.method = run.method;
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    const Case c = run_case(p, run);
+    const Method m = run.method == "prd" ? Method::prd : Method::dem;
     // PRD runs carry the sliding check, so the report can set its prediction beside the DEM.
-    PrdSettings ps = PrdSettings::from_case(c);
-    ps.sliding_check = true;
-    const RunResult r = run.method == "prd" ? prd_run(c, ps) : dem_run(c, DemSettings::from_case(c));
+    const Case c = m == Method::prd ? with_option(case_of_run(p, run), "prd.sliding_check", true) : case_of_run(p, run);
+    const RunResult r = run_case_in_study(c, m);
     row.capacity = r.capacity;
     row.time_s = r.timing.total_s;
     row.message = r.message;

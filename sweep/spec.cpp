@@ -316,7 +316,7 @@ SweepPlan plan_sweep(const SweepSpec& spec, const Case& c) {
   return p;
 }
 
-Case run_case(const SweepPlan& p, const SweepRun& r) {
+Case case_of_run(const SweepPlan& p, const SweepRun& r) {
   Case c = p.base;
   for (size_t k = 0; k < p.keys.size(); ++k)
     if (!r.values[k].is_null()) c = with_option(c, p.keys[k], r.values[k]);

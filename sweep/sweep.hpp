@@ -78,7 +78,7 @@ struct SweepPlan {
 SweepPlan plan_sweep(const SweepSpec& spec, const Case& c);
 SweepPlan plan_sweep(const SweepInput& in);
 // The case of one run: the base case with the run's values applied. Throws CaseError.
-Case run_case(const SweepPlan& p, const SweepRun& r);
+Case case_of_run(const SweepPlan& p, const SweepRun& r);
 // "dem.friction_angle=20, motion.step=0.001" (only the values that apply).
 std::string run_label(const SweepPlan& p, const SweepRun& r);
 // A value as shown in the table: strings bare, numbers in their shortest exact form.

@@ -1,6 +1,5 @@
-// Running the plan: every setting through the solvers' own entry points (prd_run, dem_run, with
-// the settings each reads from the varied case), the errors against the method's reference
-// through compare_runs, and the Pareto front.
+// Running the plan: every setting through runs/ (at the settings each method reads from the varied
+// case), the errors against the method's reference through compare_runs, and the Pareto front.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,8 +8,7 @@
 #include <sstream>
 
 #include "compare/compare.hpp"
-#include "dem/dem.hpp"
-#include "prd/prd.hpp"
+#include "runs/run.hpp"
 #include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
@@ -31,33 +29,15 @@ bool finished(const RunResult& r, const Case& c) {
   return r.steps.back().d >= end * (1 - 1e-9);
 }
 
-// One run of a planned setting. Exceptions become a run stopped by "error" with the message, so
-// one bad setting does not end the measurement.
-// `io_cpu_s` receives the CPU time spent writing the partial results, which is not the solver's.
+// One run of a planned setting, written to `dir` as it goes (runs/run.hpp); a failure is a run
+// stopped by "error" with the message, so one bad setting does not end the measurement.
+// `io_cpu_s` receives the CPU time spent writing the results, which is not the solver's.
 RunResult run_once(const PlannedRun& p, const std::string& dir, double& io_cpu_s) {
   io_cpu_s = 0;
-  try {
-    const std::string& m = p.setting.method;
-    if (m == "prd") return prd_run(p.c, PrdSettings::from_case(p.c));
-    if (m == "dem") {
-      // Written as it goes (the DEM leaves its writing out of its time), so a long run that
-      // is stopped keeps its finished increments.
-      return dem_run(p.c, DemSettings::from_case(p.c), [&](const RunResult& part) {
-        if (dir.empty()) return;
-        const double c0 = thread_cpu_s();
-        write_results(dir, part, p.c);
-        io_cpu_s += thread_cpu_s() - c0;
-      });
-    }
-    throw std::runtime_error("unknown method '" + m + "'");
-  } catch (const std::exception& e) {
-    RunResult r;
-    r.method = p.setting.method;
-    r.case_name = p.c.name;
-    r.status = RunStatus::error;
-    r.message = e.what();
-    return r;
-  }
+  RunOutput out;
+  out.dir = dir;
+  out.write_cpu_s = &io_cpu_s;
+  return run_case_in_study(p.c, p.setting.method == "prd" ? Method::prd : Method::dem, out);
 }
 
 double median(std::vector<double> v) {
@@ -182,10 +162,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
           times.wall.push_back(r.timing.total_s);
           if (r.status == RunStatus::error) break;  // a failure is not timed again
         }
-        if (!dir.empty()) {
-          write_results(dir, r, p.c);
-          write_file_atomic((fs::path(dir) / "timing.json").string(), times_json(times).dump() + "\n");
-        }
+        if (!dir.empty()) write_file_atomic((fs::path(dir) / "timing.json").string(), times_json(times).dump() + "\n");
       }
       row.source = dir;
     }

@@ -12,7 +12,6 @@
 
 namespace masonry {
 
-const char* method_name(Method m) { return m == Method::prd ? "prd" : "dem"; }
 
 const char* quantity_name(Quantity q) {
   switch (q) {
@@ -98,8 +97,7 @@ Tolerance tolerance_field(const json& o, const Where& w, const std::string& pref
 }
 
 Method method_of(const std::string& s, const Where& w, const std::string& field) {
-  if (s == "prd") return Method::prd;
-  if (s == "dem") return Method::dem;
+  if (const std::optional<Method> m = parse_method(s)) return *m;
   w.fail(field, "unknown method '" + s + "' (prd or dem)");
 }
 

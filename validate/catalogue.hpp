@@ -12,11 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "model/case.hpp"
+#include "runs/method.hpp"
 
 namespace masonry {
 
-enum class Method { prd, dem };
-const char* method_name(Method m);
 
 // What a benchmark measures. Units: capacity m; least_friction_angle and threshold on a friction
 // angle deg; stands 1 (stands) or 0; reaction N (moment N m); reaction_balance and duality_gap

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "dem/dem.hpp"
 #include "prd/prd.hpp"
+#include "runs/run.hpp"
 #include "validate/validate.hpp"
 
 namespace masonry {
@@ -24,7 +24,7 @@ const RunResult& run_method(const Case& c, Method m, RunCache& cache) {
   const std::string key = std::string(method_name(m)) + "\n" + case_to_json(c);
   auto it = cache.runs.find(key);
   if (it == cache.runs.end())
-    it = cache.runs.emplace(key, m == Method::prd ? prd_run(c, PrdSettings::from_case(c)) : dem_run(c, DemSettings::from_case(c))).first;
+    it = cache.runs.emplace(key, run_case(c, m)).first;
   return it->second;
 }
 
@@ -37,7 +37,7 @@ std::string run_failure(const RunResult& r) {
 Measured stands(Case c, Method m) {
   if (m == Method::prd) return {true, prd_check(c, c.prd.contact_tolerance).stable ? 1.0 : 0.0, ""};
   c.motion.max_steps = 0;
-  const RunResult r = dem_run(c, DemSettings::from_case(c));
+  const RunResult r = run_case(c, Method::dem);
   if (r.status == RunStatus::max_steps) return {true, 1.0, ""};
   if (r.status == RunStatus::collapse) return {true, 0.0, ""};
   return fail(run_failure(r));

@@ -14,6 +14,7 @@
 #include "dem/protocol.hpp"
 #include "util.hpp"
 #include "dem/variants.hpp"
+#include "runs/parallel.hpp"
 
 namespace {
 

@@ -116,7 +116,7 @@ TEST(SweepPlan, FullFactorialWithOnePrdRunPerNonDemCombination) {
     EXPECT_EQ(r.values[1].get<double>(), expected[k][1]);
     EXPECT_EQ(r.prd, k < 3 ? 0 : 1);
     // The run's case carries its values and the fixed ones.
-    const Case c = run_case(p, r);
+    const Case c = case_of_run(p, r);
     EXPECT_EQ(c.motion.step, expected[k][0]);
     EXPECT_EQ(c.dem.friction_angle, expected[k][1]);
     EXPECT_EQ(c.dem.hold_time, 0.5);

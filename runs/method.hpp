@@ -1,0 +1,19 @@
+// The two methods a case runs by, as a type: parsed once from a file or a flag, never compared
+// as strings.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace masonry {
+
+enum class Method { prd, dem };
+
+// "prd" / "dem": the name in files, flags and results.json's "method".
+const char* method_name(Method m);
+// "PRD" / "DEM": for people.
+const char* method_label(Method m);
+// The method a name gives, or nothing for any other text.
+std::optional<Method> parse_method(const std::string& name);
+
+}  // namespace masonry

@@ -1,0 +1,76 @@
+#include "runs/run.hpp"
+
+#include <chrono>
+
+#include "model/io.hpp"
+
+namespace masonry {
+
+namespace {
+
+// The one writing rule (run.hpp): after a step only when the last write cost less than a
+// quarter of the time since, so writing takes at most about a fifth of the run; at the end always.
+class ResultsWriter {
+ public:
+  ResultsWriter(const Case& c, const RunOutput& out) : c_(c), out_(out) {}
+  void step(const RunResult& r) {
+    if (!out_.dir.empty()) {
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - last_).count() >= 4 * last_cost_) {
+        write(r);
+        last_ = std::chrono::steady_clock::now();
+        last_cost_ = std::chrono::duration<double>(last_ - now).count();
+      }
+    }
+    if (out_.on_step) out_.on_step(r);
+  }
+  RunResult last(RunResult r) const {
+    if (!out_.dir.empty()) write(r);
+    return r;
+  }
+
+ private:
+  void write(const RunResult& r) const {
+    const double c0 = out_.write_cpu_s ? thread_cpu_s() : 0;
+    write_results(out_.dir, r, c_);
+    if (out_.write_cpu_s) *out_.write_cpu_s += thread_cpu_s() - c0;
+  }
+
+  const Case& c_;
+  const RunOutput& out_;
+  std::chrono::steady_clock::time_point last_{};
+  double last_cost_ = 0;
+};
+
+}  // namespace
+
+RunResult run_prd(const Case& c, const PrdSettings& s, const RunOutput& out) {
+  ResultsWriter w(c, out);
+  return w.last(prd_run(c, s, [&](const RunResult& r) { w.step(r); }));
+}
+
+RunResult run_dem(const Case& c, const DemSettings& s, const RunOutput& out) {
+  ResultsWriter w(c, out);
+  return w.last(dem_run(c, s, [&](const RunResult& r) { w.step(r); }));
+}
+
+RunResult run_case(const Case& c, Method m, const RunOutput& out) {
+  return m == Method::prd ? run_prd(c, PrdSettings::from_case(c), out) : run_dem(c, DemSettings::from_case(c), out);
+}
+
+RunResult run_case_in_study(const Case& c, Method m, const RunOutput& out) {
+  try {
+    return run_case(c, m, out);
+  } catch (const std::exception& e) {
+    RunResult r;
+    r.method = method_name(m);
+    r.case_name = c.name;
+    r.total_weight = total_weight(c);
+    r.status = RunStatus::error;
+    r.message = e.what();
+    if (!out.dir.empty()) write_results(out.dir, r, c);
+    return r;
+  }
+}
+
+}  // namespace masonry

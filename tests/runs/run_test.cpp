@@ -1,0 +1,93 @@
+// runs/: the one way to run a case. Its writing rule (every finished step reaches the directory,
+// the end always), its turning a refusal into a result for studies, and running many at once in
+// order.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "common.hpp"
+#include "compare/compare.hpp"
+#include "model/case.hpp"
+#include "runs/parallel.hpp"
+#include "runs/run.hpp"
+
+namespace masonry {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kArch = std::string(MASONRY_SOURCE_DIR) + "/cases/pointed-arch.json";
+
+TEST(RunsMethod, NamesRoundTrip) {
+  for (Method m : {Method::prd, Method::dem}) EXPECT_EQ(parse_method(method_name(m)), m);
+  EXPECT_FALSE(parse_method("PRD").has_value());  // names in files are lower case
+  EXPECT_STREQ(method_label(Method::dem), "DEM");
+}
+
+// While the run goes, the directory holds a prefix of it (never more steps than were recorded,
+// the first step from the start); at the end it holds the run itself.
+TEST(RunsWriting, EveryFinishedStepReachesTheDirectoryAndTheEndAlways) {
+  const test::Scratch scratch("runs-writing");
+  const Case c = with_option(load_case(kArch), "motion.max_steps", 60);
+  size_t calls = 0, seen_on_disk = 0;
+  RunOutput out;
+  out.dir = scratch.path.string();
+  out.on_step = [&](const RunResult& part) {
+    ++calls;
+    ASSERT_TRUE(fs::exists(scratch.path / "results.json")) << "the first step is written at once";
+    const RunResult disk = load_results((scratch.path / "results.json").string(), c);
+    EXPECT_LE(disk.steps.size(), part.steps.size());
+    seen_on_disk = std::max(seen_on_disk, disk.steps.size());
+  };
+  const RunResult r = run_case(c, Method::prd, out);
+  EXPECT_GT(calls, 10u);
+  EXPECT_GE(seen_on_disk, 1u);
+  const RunResult disk = load_results((scratch.path / "results.json").string(), c);
+  EXPECT_EQ(disk.steps.size(), r.steps.size());
+  EXPECT_EQ(disk.status, r.status);
+  EXPECT_DOUBLE_EQ(disk.capacity, r.capacity);
+  EXPECT_TRUE(fs::exists(scratch.path / "steps.csv"));
+}
+
+// A study goes on past a run its solver refuses: the refusal is a run stopped by "error", with
+// the solver's message, written like any other. run_case itself throws (nothing ran).
+TEST(RunsInStudy, ARefusalIsAnErrorRunWithTheMessage) {
+  const test::Scratch scratch("runs-refusal");
+  Case c = load_case(kArch);
+  c.blocks[c.block_index("v3")].density = 0;  // past the loader: the DEM cannot give it a mass
+  EXPECT_THROW(run_case(c, Method::dem), std::exception);
+  RunOutput out;
+  out.dir = scratch.path.string();
+  const RunResult r = run_case_in_study(c, Method::dem, out);
+  EXPECT_EQ(r.status, RunStatus::error);
+  EXPECT_NE(r.message.find("v3"), std::string::npos) << r.message;
+  const RunResult disk = load_results((scratch.path / "results.json").string(), c);
+  EXPECT_EQ(disk.status, RunStatus::error);
+  EXPECT_EQ(disk.message, r.message);
+}
+
+TEST(RunsParallel, ResultsInOrderWhateverFinishesFirst) {
+  std::atomic<int> running{0}, most{0};
+  const std::vector<RunResult> out = run_parallel(7, 3, [&](size_t i) {
+    const int now = ++running;
+    int m = most;
+    while (now > m && !most.compare_exchange_weak(m, now)) {
+    }
+    RunResult r;
+    r.capacity = double(i);
+    // Later runs finish first.
+    std::this_thread::sleep_for(std::chrono::milliseconds(5 * (7 - int(i))));
+    --running;
+    return r;
+  });
+  ASSERT_EQ(out.size(), 7u);
+  for (size_t i = 0; i < out.size(); ++i) EXPECT_EQ(out[i].capacity, double(i));
+  EXPECT_LE(most.load(), 3);
+  EXPECT_GE(most.load(), 2);
+}
+
+}  // namespace
+}  // namespace masonry
