@@ -94,6 +94,10 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
 
 // The stable records of a run: those with d <= capacity (the collapse record is left out).
 std::vector<const StepRecord*> stable_records(const RunResult& r);
+// The last of `recs` at or before d (records in order of d; the first when d is before them all).
+const StepRecord* record_at(const std::vector<const StepRecord*>& recs, double d);
+// The step between the first two records (m), 0 with fewer than two.
+double record_step(const std::vector<const StepRecord*>& recs);
 // Hinges of one record (joint with exactly one open corner), sorted by joint.
 std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord& s);
 
@@ -117,10 +121,5 @@ std::vector<int> mirror_blocks(const Case& c);
 nlohmann::ordered_json to_json(const Comparison& k);
 // Violated limits, one readable line each; empty when every limit holds.
 std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances& t);
-
-// Reads a results.json (masonry-results/1) written for case `c` back into a RunResult; throws
-// std::runtime_error naming the file and field for anything that does not fit the case.
-RunResult parse_results(const std::string& text, const Case& c, const std::string& source);
-RunResult load_results(const std::string& path, const Case& c);
 
 }  // namespace masonry

@@ -25,13 +25,7 @@ ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 // A ratio without an exponent: 0.5, 12.3, 2270.
 std::string ratio(double x) { return fmt::number(x, x >= 100 ? "%.0f" : "%.3g", x); }
 
-const StepRecord* record_at(const RunResult& r, double d) {
-  const auto recs = stable_records(r);
-  const StepRecord* best = recs.empty() ? nullptr : recs.front();
-  for (const StepRecord* s : recs)
-    if (s->d <= d + 1e-9 * std::max(1.0, std::abs(d))) best = s;
-  return best;
-}
+const StepRecord* record_at(const RunResult& r, double d) { return record_at(stable_records(r), d); }
 
 Panel panel(const ReportRun& rr, const StepRecord* s, double d) {
   Panel p{rr.run, s, rr.label, "no record"};
@@ -178,7 +172,7 @@ Table headline(const Report& r) {
   for (const ReportRun& rr : r.runs) {
     cap.push_back(fmt::mm(rr.run->capacity) + (rr.run->collapsed ? "" : " (no collapse)"));
     const auto recs = stable_records(*rr.run);
-    step.push_back(recs.size() >= 2 ? fmt::mm(recs[1]->d - recs[0]->d, 1) : "n/a");
+    step.push_back(recs.size() >= 2 ? fmt::mm(record_step(recs), 1) : "n/a");
     time.push_back(fmt::secs(rr.run->timing.total_s));
   }
   std::vector<Cell> rel = {"-"}, tmax = {"-"}, trms = {"-"}, hinges = {"-"}, ratio_ = {"1"};
