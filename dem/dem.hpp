@@ -16,54 +16,11 @@
 
 namespace masonry {
 
-struct DemSettings {
-  double young_modulus = 3.0e10;  // Pa
-  double poisson = 0.2;
-  std::optional<double> kn;       // Pa/m; default E / h_block, h_block = sqrt(mean free block area)
-  std::optional<double> ks;       // Pa/m; default G / h_block, G = E / (2 (1 + nu))
-  double stiffness_reduction = 1.0;  // kn and ks are divided by this
-  double friction_angle = 35.0;      // degrees; 90 means no slip limit
-  double damping = 0.8;              // local damping coefficient alpha in [0, 1)
-  // dt = timestep_factor * dt_crit, dt_crit = 2 / omega_bound (see DemModel::critical_dt);
-  // factors above 1 are refused.
-  double timestep_factor = 0.8;
-  double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight at equilibrium
-  double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
-  // Model-time cap of one hold, s: a hold ends on equilibrium or on evidence of collapse; one that
-  // reaches this cap without either is "undecided" (never a capacity, never an error).
-  double hold_time = 30.0;
-  double step = 0.001;                  // increment of d, m
+// The DEM's settings (model/case.hpp's DemOptions, declared once there) and the motion's
+// increment, as one run takes them.
+struct DemSettings : DemOptions {
+  double step = 0.001;  // increment of d, m
   int max_steps = 1000;
-  // Model time over which the supports travel one increment, s. They move at constant velocity
-  // except for smooth (half-cosine) speed ramps over `ramp_fraction` of that time at each end.
-  // A velocity that jumps from zero hits the structure with an elastic shock of v sqrt(k m): a
-  // fast move (0.02 s per 4 mm on the test arch) makes the springing joint slip and inflates the
-  // capacity (README.md). ramp_fraction = 0 is the paper's abrupt constant velocity.
-  double move_time = 0.0;
-  double ramp_fraction = 0.25;  // in [0, 0.5]
-  // A hold that moves some block farther than this from where the hold began, without settling,
-  // is a collapse; <= 0 means 2% of the scene size.
-  double collapse_drift = 0.0;
-  // A joint corner whose normal gap exceeds this is open, m; < 0 means the case's
-  // prd.contact_tolerance, so DEM and PRD call hinges alike.
-  double open_gap = -1.0;
-  // The quasi-static protocol (dem/README.md). While the supports move, their speed is servoed so
-  // that the kinetic energy of the blocks stays below kinetic_ratio x total weight x the move's
-  // length: the loading rate follows from the structure's own response. move_time > 0 replaces
-  // the servo by a move at constant speed over that model time (the paper's protocol).
-  // (At 1e-3 the light right aisle arch of cathedral-settlement-rotation, carried by its moving
-  // pier, moves fast enough to open the hinge on the other side of its crown; the answer stops
-  // moving below 2.5e-4: dem/README.md, "The loading rate".)
-  double kinetic_ratio = 1e-3;
-  // Once an increment fails (collapse, or a hold that neither settles nor runs away), the run
-  // goes back to the last equilibrium and bisects the failed increment until the bracket is
-  // narrower than bracket_fraction x step (0: no bisection, the capacity is the last settled
-  // increment).
-  double bracket_fraction = 0.01;
-  // Confirm a located collapse by the short move from the bracket's final equilibrium (dem/README.md,
-  // "Protocol", stage 4); a failure it does not reproduce becomes an equilibrium and the run goes
-  // on. Off by default: near a limit point it lets the capacity creep past it (README).
-  bool confirm_collapse = false;
   // Tests only: accept a time-step factor above 1, so the run's blow-up guard (an energy balance
   // checked every few cycles, dem_run) can be exercised. No case field or option sets it.
   bool allow_unstable_timestep = false;

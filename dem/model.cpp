@@ -31,24 +31,7 @@ struct QueryCollector {
 
 DemSettings DemSettings::from_case(const Case& c) {
   DemSettings s;
-  s.young_modulus = c.dem.young_modulus;
-  s.poisson = c.dem.poisson;
-  s.kn = c.dem.kn;
-  s.ks = c.dem.ks;
-  s.stiffness_reduction = c.dem.stiffness_reduction;
-  s.friction_angle = c.dem.friction_angle;
-  s.damping = c.dem.damping;
-  s.timestep_factor = c.dem.timestep_factor;
-  s.equilibrium_tolerance = c.dem.equilibrium_tolerance;
-  s.velocity_tolerance = c.dem.velocity_tolerance;
-  s.hold_time = c.dem.hold_time;
-  s.move_time = c.dem.move_time;
-  s.ramp_fraction = c.dem.ramp_fraction;
-  s.collapse_drift = c.dem.collapse_drift;
-  s.kinetic_ratio = c.dem.kinetic_ratio;
-  s.bracket_fraction = c.dem.bracket_fraction;
-  if (c.dem.open_gap) s.open_gap = *c.dem.open_gap;
-  s.confirm_collapse = c.dem.confirm_collapse;
+  static_cast<DemOptions&>(s) = c.dem;
   s.step = c.motion.step;
   s.max_steps = c.motion.max_steps;
   return s;
@@ -63,36 +46,11 @@ void DemModel::Impl::setup() {
 }
 
 void DemModel::Impl::check_settings() const {
-  // Settings come from the case's dem section or from the command line: a refusal names the
-  // file and the case field (the option of the same name), with the value.
-  auto refuse = [&](const char* field, double value, const char* rule) {
-    std::ostringstream m;
-    m << c.source << ": dem: field '" << field << "' = " << value << " " << rule;
-    throw std::runtime_error(m.str());
-  };
-  const std::pair<const char*, double> numbers[] = {
-      {"young_modulus", s.young_modulus},   {"poisson", s.poisson},         {"stiffness_reduction", s.stiffness_reduction},
-      {"hold_time", s.hold_time},           {"move_time", s.move_time},     {"step", s.step},
-      {"equilibrium_tolerance", s.equilibrium_tolerance}, {"velocity_tolerance", s.velocity_tolerance},
-      {"collapse_drift", s.collapse_drift}, {"open_gap", s.open_gap},       {"kn", s.kn.value_or(1.0)},
-      {"ks", s.ks.value_or(1.0)},           {"kinetic_ratio", s.kinetic_ratio}, {"bracket_fraction", s.bracket_fraction},
-      {"friction_angle", s.friction_angle}, {"damping", s.damping},         {"ramp_fraction", s.ramp_fraction}};
-  for (const auto& [name, v] : numbers)
-    if (!std::isfinite(v)) refuse(name, v, "is not a finite number");
-  if (!(s.friction_angle >= 0 && s.friction_angle <= 90)) refuse("friction_angle", s.friction_angle, "must lie in [0, 90] degrees");
-  if (!(s.damping >= 0 && s.damping < 1)) refuse("damping", s.damping, "must lie in [0, 1)");
-  if (!(s.stiffness_reduction > 0)) refuse("stiffness_reduction", s.stiffness_reduction, "must be positive");
-  if (!(s.young_modulus > 0)) refuse("young_modulus", s.young_modulus, "must be positive (Pa)");
-  if (!(s.poisson > -1 && s.poisson < 0.5)) refuse("poisson", s.poisson, "must lie in (-1, 0.5)");
-  if (!(s.hold_time > 0)) refuse("hold_time", s.hold_time, "must be positive (s)");
-  if (!(s.move_time >= 0)) refuse("move_time", s.move_time, "must be >= 0 (s)");
-  if (!(s.kinetic_ratio > 0)) refuse("kinetic_ratio", s.kinetic_ratio, "must be positive");
-  if (!(s.bracket_fraction >= 0 && s.bracket_fraction < 1)) refuse("bracket_fraction", s.bracket_fraction, "must lie in [0, 1)");
-  if (!(s.ramp_fraction >= 0 && s.ramp_fraction <= 0.5)) refuse("ramp_fraction", s.ramp_fraction, "must lie in [0, 0.5]");
-  if (!(s.equilibrium_tolerance > 0)) refuse("equilibrium_tolerance", s.equilibrium_tolerance, "must be positive");
-  if (!(s.velocity_tolerance > 0)) refuse("velocity_tolerance", s.velocity_tolerance, "must be positive (m/s)");
-  if (!(s.step > 0)) refuse("step", s.step, "(motion.step) must be positive (m)");
-  if (s.max_steps < 0) refuse("max_steps", s.max_steps, "(motion.max_steps) must be >= 0");
+  // The case loader's own check (one definition of every range), for settings a study derives
+  // in code; then the motion's increment, which DemSettings carries beside them.
+  check_dem_options(s, c.source);
+  if (!(s.step > 0) || !std::isfinite(s.step)) throw CaseError(c.source + ": motion: field 'step' must be a positive number of m");
+  if (s.max_steps < 0) throw CaseError(c.source + ": motion: field 'max_steps' must be >= 0");
 }
 
 void DemModel::Impl::build_blocks() {
@@ -204,7 +162,7 @@ void DemModel::Impl::set_time_step() {
     throw std::runtime_error(m.str());
   }
   dt = s.timestep_factor * dt_crit;
-  open_gap = s.open_gap >= 0 ? s.open_gap : c.prd.contact_tolerance;
+  open_gap = s.open_gap.value_or(c.prd.contact_tolerance);
 }
 
 void DemModel::Impl::place_support(int b, double d, Vec2& x, double& th) const {

@@ -102,7 +102,7 @@ void record_settings(Run& u) {
                   {"ramp_fraction", s.ramp_fraction},
                   {"collapse_drift", u.lim.collapse_drift},
                   {"bracket_fraction", s.bracket_fraction},
-                  {"open_gap", s.open_gap >= 0 ? s.open_gap : u.c.prd.contact_tolerance},
+                  {"open_gap", s.open_gap.value_or(u.c.prd.contact_tolerance)},
                   {"step", s.step},
                   {"max_steps", s.max_steps}};
 }

@@ -204,6 +204,37 @@ struct Reader {
   }
 };
 
+// The ranges of the DEM's settings, checked once: by the loader for a case file or an option,
+// and by the DEM (check_dem_options) for settings a study derives in code.
+void check_dem(const DemOptions& d, const Reader& r) {
+  // A refusal shows the value, as range() does: a study's derived setting is not in any file.
+  const auto within = [&](bool ok, const char* field, double x, const char* rule) {
+    if (ok) return;
+    std::ostringstream m;
+    m << "field '" << field << "' = " << x << " " << rule;
+    r.fail("dem", m.str());
+  };
+  r.range(d.young_modulus, 0, kMaxModulus, "dem", "young_modulus", "Pa", true);
+  within(d.poisson > -1 && d.poisson < 0.5, "poisson", d.poisson, "must lie in (-1, 0.5)");
+  within(d.friction_angle >= 0 && d.friction_angle <= 90, "friction_angle", d.friction_angle, "must lie in [0, 90] degrees");
+  if (d.kn) r.range(*d.kn, 0, kMaxJointStiffness, "dem", "kn", "Pa/m", true);
+  if (d.ks) r.range(*d.ks, 0, kMaxJointStiffness, "dem", "ks", "Pa/m", true);
+  r.range(d.stiffness_reduction, 1e-6, 1e6, "dem", "stiffness_reduction", "");
+  within(d.damping >= 0 && d.damping < 1, "damping", d.damping, "must lie in [0, 1)");
+  // Above 1 the DEM refuses it with the time step it would give (dem/model.cpp); tests may allow it.
+  within(d.timestep_factor > 0 && std::isfinite(d.timestep_factor), "timestep_factor", d.timestep_factor, "is outside (0, 1]");
+  r.range(d.equilibrium_tolerance, 0, 1, "dem", "equilibrium_tolerance", "(of a block's weight)", true);
+  r.range(d.velocity_tolerance, 0, 1, "dem", "velocity_tolerance", "m/s", true);
+  r.range(d.hold_time, 0, kMaxModelTime, "dem", "hold_time", "s", true);
+  r.range(d.move_time, 0, kMaxModelTime, "dem", "move_time", "s (0: the support speed servoed on the kinetic energy)");
+  r.range(d.kinetic_ratio, 0, 1, "dem", "kinetic_ratio", "", true);
+  within(d.bracket_fraction >= 0 && d.bracket_fraction < 1, "bracket_fraction", d.bracket_fraction, "must lie in [0, 1)");
+  within(d.ramp_fraction >= 0 && d.ramp_fraction <= 0.5, "ramp_fraction", d.ramp_fraction, "must lie in [0, 0.5]");
+  r.range(d.collapse_drift, 0, kMaxLength, "dem", "collapse_drift", "m (0: 2% of the scene size)");
+  if (d.open_gap) r.range(*d.open_gap, 0, kMaxLength, "dem", "open_gap", "m");
+}
+
+
 // Tolerances and steps against the scene: below 1e-9 of the scene size a length is lost in the
 // round-off of the coordinates; a contact tolerance or collapse drift above a tenth of it makes
 // every block touch or nothing a collapse. Derived quantities must be finite before any step.
@@ -405,23 +436,7 @@ Case parse_case(const std::string& text, const std::string& source) {
     d.collapse_drift = r.number(jd, "dem", "collapse_drift", d.collapse_drift);
     if (jd.contains("open_gap")) d.open_gap = r.number(jd["open_gap"], "dem", "open_gap");
     d.confirm_collapse = r.boolean(jd, "dem", "confirm_collapse", d.confirm_collapse);
-    r.range(d.young_modulus, 0, kMaxModulus, "dem", "young_modulus", "Pa", true);
-    if (!(d.poisson > -1 && d.poisson < 0.5)) r.fail("dem", "field 'poisson' must lie in (-1, 0.5)");
-    if (!(d.friction_angle >= 0 && d.friction_angle <= 90)) r.fail("dem", "field 'friction_angle' must lie in [0, 90] degrees");
-    if (d.kn) r.range(*d.kn, 0, kMaxJointStiffness, "dem", "kn", "Pa/m", true);
-    if (d.ks) r.range(*d.ks, 0, kMaxJointStiffness, "dem", "ks", "Pa/m", true);
-    r.range(d.stiffness_reduction, 1e-6, 1e6, "dem", "stiffness_reduction", "");
-    if (!(d.damping >= 0 && d.damping < 1)) r.fail("dem", "field 'damping' must lie in [0, 1)");
-    if (!(d.timestep_factor > 0)) r.fail("dem", "field 'timestep_factor' must be positive");
-    r.range(d.equilibrium_tolerance, 0, 1, "dem", "equilibrium_tolerance", "(of a block's weight)", true);
-    r.range(d.velocity_tolerance, 0, 1, "dem", "velocity_tolerance", "m/s", true);
-    r.range(d.hold_time, 0, kMaxModelTime, "dem", "hold_time", "s", true);
-    r.range(d.move_time, 0, kMaxModelTime, "dem", "move_time", "s (0: the support speed servoed on the kinetic energy)");
-    r.range(d.kinetic_ratio, 0, 1, "dem", "kinetic_ratio", "", true);
-    if (!(d.bracket_fraction >= 0 && d.bracket_fraction < 1)) r.fail("dem", "field 'bracket_fraction' must lie in [0, 1)");
-    if (!(d.ramp_fraction >= 0 && d.ramp_fraction <= 0.5)) r.fail("dem", "field 'ramp_fraction' must lie in [0, 0.5]");
-    r.range(d.collapse_drift, 0, kMaxLength, "dem", "collapse_drift", "m (0: 2% of the scene size)");
-    if (d.open_gap) r.range(*d.open_gap, 0, kMaxLength, "dem", "open_gap", "m");
+    check_dem(d, r);
   }
 
   // Orientation: store counter-clockwise.
@@ -542,5 +557,7 @@ Case with_option(const Case& c, const std::string& key, const nlohmann::json& va
   }
   return parse_case(doc.dump(), source);
 }
+
+void check_dem_options(const DemOptions& d, const std::string& source) { check_dem(d, Reader{source}); }
 
 }  // namespace masonry

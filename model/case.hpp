@@ -64,35 +64,58 @@ struct PrdOptions {
   bool sliding_check = false;
 };
 
+// The DEM's settings, the case's "dem" section (dem/README.md has the model and the protocol).
+// dem/dem.hpp's DemSettings adds the motion's increment to them; nothing else declares them.
 struct DemOptions {
-  double young_modulus = 3.0e10;        // Pa
+  double young_modulus = 3.0e10;  // Pa
   double poisson = 0.2;
-  double friction_angle = 35.0;         // degrees
-  std::optional<double> kn;             // normal joint stiffness, Pa/m (default E / h_block)
-  std::optional<double> ks;             // shear joint stiffness, Pa/m (default G / h_block)
-  double stiffness_reduction = 1.0;     // kn and ks are divided by this (the paper used 10)
-  double damping = 0.8;                 // local non-viscous damping coefficient, 0..1
-  double timestep_factor = 0.8;         // safety factor on the critical time step
-  double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight
+  double friction_angle = 35.0;   // degrees; 90 means no slip limit
+  std::optional<double> kn;       // Pa/m; default E / h_block, h_block = sqrt(mean free block area)
+  std::optional<double> ks;       // Pa/m; default G / h_block, G = E / (2 (1 + nu))
+  double stiffness_reduction = 1.0;  // kn and ks are divided by this (the paper used 10)
+  double damping = 0.8;              // local non-viscous damping coefficient alpha in [0, 1)
+  // dt = timestep_factor * dt_crit, dt_crit = 2 / omega_bound (see DemModel::critical_dt);
+  // factors above 1 are refused.
+  double timestep_factor = 0.8;
+  double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight at equilibrium
   double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
-  double hold_time = 30.0;              // model-time cap of one hold, s (dem/README.md)
-  // The loading protocol (dem/README.md): the support speed is servoed to keep the kinetic energy
-  // below kinetic_ratio x total weight x increment; move_time > 0 (s) moves at constant speed over
-  // that time instead, with half-cosine speed ramps over ramp_fraction of it at each end. The
-  // drift during a hold that counts as collapse (m; 0 means 2% of the scene size). A failed
-  // increment is bisected down to bracket_fraction x step (0: not bisected).
+  // Model-time cap of one hold, s: a hold ends on equilibrium or on evidence of collapse; one that
+  // reaches this cap without either is "undecided" (never a capacity, never an error).
+  double hold_time = 30.0;
+  // The quasi-static protocol (dem/README.md). While the supports move, their speed is servoed so
+  // that the kinetic energy of the blocks stays below kinetic_ratio x total weight x the move's
+  // length: the loading rate follows from the structure's own response. (At 1e-3 the light right
+  // aisle arch of cathedral-settlement-rotation, carried by its moving pier, moves fast enough to
+  // open the hinge on the other side of its crown; the answer stops moving below 2.5e-4:
+  // dem/README.md, "The loading rate".)
   double kinetic_ratio = 1e-3;
+  // move_time > 0 replaces the servo by a move at constant speed over that model time (s, the
+  // paper's protocol), with smooth (half-cosine) speed ramps over `ramp_fraction` of it at each
+  // end. A velocity that jumps from zero hits the structure with an elastic shock of v sqrt(k m):
+  // a fast move (0.02 s per 4 mm on the test arch) makes the springing joint slip and inflates
+  // the capacity (README.md). ramp_fraction = 0 is the paper's abrupt constant velocity.
   double move_time = 0.0;
-  double ramp_fraction = 0.25;
+  double ramp_fraction = 0.25;  // in [0, 0.5]
+  // A hold that moves some block farther than this from where the hold began, without settling,
+  // is a collapse, m; <= 0 means 2% of the scene size.
   double collapse_drift = 0.0;
+  // Once an increment fails (collapse, or a hold that neither settles nor runs away), the run
+  // goes back to the last equilibrium and bisects the failed increment until the bracket is
+  // narrower than bracket_fraction x step (0: no bisection, the capacity is the last settled
+  // increment).
   double bracket_fraction = 0.01;
   // A joint corner whose gap has grown by more than this since the settled start is open, m
   // (absent: prd.contact_tolerance, so both methods call hinges alike).
   std::optional<double> open_gap;
-  // Confirm a located collapse by the short move from the bracket's last equilibrium
-  // (dem/README.md, "Protocol", stage 4).
+  // Confirm a located collapse by the short move from the bracket's final equilibrium
+  // (dem/README.md, "Protocol", stage 4); a failure it does not reproduce becomes an equilibrium
+  // and the run goes on. Off by default: near a limit point it lets the capacity creep past it.
   bool confirm_collapse = false;
 };
+
+// Refuses (CaseError, naming `source`, "dem" and the field) settings outside their ranges: the
+// loader's own check, for settings a study derives in code.
+void check_dem_options(const DemOptions& d, const std::string& source);
 
 struct Case {
   std::string source;  // file name, for messages

@@ -178,7 +178,7 @@ TEST(DemExtremes, NonsenseSettingsAreRefused) {
   };
   DemSettings s = DemSettings::from_case(c);
   s.kn = -1e8;
-  refused(s, "stiffnesses must be positive");
+  refused(s, "field 'kn' = -1e+08 is outside (0,");
   s = DemSettings::from_case(c);
   s.hold_time = INFINITY;
   refused(s, "field 'hold_time'");
