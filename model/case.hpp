@@ -49,18 +49,24 @@ struct Motion {
   std::vector<SupportMotion> supports;
 };
 
+// PRD's settings, the case's "prd" section; prd/prd.hpp's PrdSettings adds the motion's increment
+// to them; nothing else declares them.
 struct PrdOptions {
   // Length (m) below which an endpoint's gap counts as closed; also the geometric tolerance of
   // interface detection.
   double contact_tolerance = 1e-5;
-  // Event-driven stepping (prd/prd.hpp): large steps while the mechanism stays the same, each
-  // change of mechanism located to `event_tolerance` (m; 0: 1e-4 of the scene size, 0.1 mm
-  // for a metre-size scene) by bisection; steps up to `max_step` (m; 0: 16 motion.step).
+  // Event-driven stepping: moves up to max_step long while the mechanism stays the same, cut
+  // short where the next event is predicted (a corner's force reaching 0, a gap closing), so
+  // that every event (a corner opening or closing, collapse) is located within
+  // event_tolerance; an event found at the end of a longer move is bracketed again by going
+  // back. Whether a closed corner opens is judged by its opening rate over motion.step, so the
+  // contact state does not depend on the step being taken. Besides the LPs, the predictions
+  // evaluate an LP's basis at nearby configurations (timing.basis_evaluations).
   bool adaptive = false;
-  double event_tolerance = 0.0;
-  double max_step = 0.0;
-  // The sliding check on every step (friction demand and the least friction angle an
-  // admissible force state needs; prd/prd.hpp).
+  double event_tolerance = 0.0;  // m; 0: 1e-4 of the scene size (0.1 mm for a metre-size scene)
+  double max_step = 0.0;         // m; 0: the smaller of 16 * step and 0.4 sqrt(event_tolerance * scene size)
+  // The sliding check on every recorded step (StepRecord::sliding; the run's summary in
+  // RunResult::sliding, see sliding_summary). Angles in degrees, as friction angles are.
   bool sliding_check = false;
 };
 

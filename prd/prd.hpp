@@ -13,24 +13,11 @@
 
 namespace masonry {
 
-struct PrdSettings {
-  double step = 0.001;              // increment of d per step, m
-  int max_steps = 1000;             // the run ends at d = max_steps * step
-  double contact_tolerance = 1e-5;  // m: a corner with a gap below this is closed
-  // Event-driven stepping: moves up to max_step long while the mechanism stays the same, cut
-  // short where the next event is predicted (a corner's force reaching 0, a gap closing), so
-  // that every event (a corner opening or closing, collapse) is located within
-  // event_tolerance; an event found at the end of a longer move is bracketed again by going
-  // back. Whether a closed corner opens is judged by its opening rate over `step`, so the
-  // contact state does not depend on the step being taken. Besides the LPs, the predictions
-  // evaluate an LP's basis at nearby configurations (timing.basis_evaluations).
-  bool adaptive = false;
-  double event_tolerance = 0.0;     // m; <= 0: 1e-4 of the scene size
-  double max_step = 0.0;            // m; <= 0: the smaller of 16 * step and
-                                    // 0.4 sqrt(event_tolerance * scene size)
-  // The sliding check on every recorded step (StepRecord::sliding; the run's summary in
-  // RunResult::sliding, see sliding_summary). Angles in degrees, as friction angles are.
-  bool sliding_check = false;
+// PRD's settings (model/case.hpp's PrdOptions, declared once there) and the motion's increment,
+// as one run takes them.
+struct PrdSettings : PrdOptions {
+  double step = 0.001;   // increment of d per step, m
+  int max_steps = 1000;  // the run ends at d = max_steps * step
   static PrdSettings from_case(const Case& c);
 };
 

@@ -12,13 +12,9 @@ using namespace prd_detail;
 
 PrdSettings PrdSettings::from_case(const Case& c) {
   PrdSettings s;
+  static_cast<PrdOptions&>(s) = c.prd;
   s.step = c.motion.step;
   s.max_steps = c.motion.max_steps;
-  s.contact_tolerance = c.prd.contact_tolerance;
-  s.adaptive = c.prd.adaptive;
-  s.event_tolerance = c.prd.event_tolerance;
-  s.max_step = c.prd.max_step;
-  s.sliding_check = c.prd.sliding_check;
   return s;
 }
 
