@@ -400,7 +400,20 @@ Case parse_case(const std::string& text, const std::string& source) {
 
   if (doc.contains("prd")) {
     const json& jp = doc["prd"];
-    r.only(jp, "prd", {"contact_tolerance", "adaptive", "event_tolerance", "max_step", "sliding_check"});
+    r.only(jp, "prd", {"contact_tolerance", "adaptive", "event_tolerance", "max_step", "sliding_check", "hold_closed"});
+    if (jp.contains("hold_closed")) {
+      const json& h = jp["hold_closed"];
+      if (!h.is_array()) r.fail("prd", "field 'hold_closed' must be a list of joint corners (\"BLOCK/BLOCK:A\")");
+      c.prd.hold_closed.clear();
+      for (const json& x : h) {
+        const std::string s = x.is_string() ? x.get<std::string>() : std::string();
+        const size_t slash = s.find('/');
+        const bool ok = slash != std::string::npos && slash > 0 && s.size() > slash + 3 &&
+                        (s.compare(s.size() - 2, 2, ":A") == 0 || s.compare(s.size() - 2, 2, ":B") == 0);
+        if (!ok) r.fail("prd", "field 'hold_closed': '" + printable(x.is_string() ? s : x.dump()) + "' is not a joint corner (BLOCK/BLOCK:A or :B)");
+        c.prd.hold_closed.push_back(s);
+      }
+    }
     c.prd.sliding_check = r.boolean(jp, "prd", "sliding_check", c.prd.sliding_check);
     c.prd.contact_tolerance = r.number(jp, "prd", "contact_tolerance", c.prd.contact_tolerance);
     r.range(c.prd.contact_tolerance, 0, kMaxLength, "prd", "contact_tolerance", "m", true);
@@ -510,6 +523,7 @@ std::string case_to_json(const Case& c) {
                 {"event_tolerance", c.prd.event_tolerance},
                 {"max_step", c.prd.max_step},
                 {"sliding_check", c.prd.sliding_check}};
+  if (!c.prd.hold_closed.empty()) doc["prd"]["hold_closed"] = c.prd.hold_closed;
   ordered_json dem = {{"young_modulus", c.dem.young_modulus},
               {"poisson", c.dem.poisson},
               {"friction_angle", c.dem.friction_angle},

@@ -68,6 +68,11 @@ struct PrdOptions {
   // The sliding check on every recorded step (StepRecord::sliding; the run's summary in
   // RunResult::sliding, see sliding_summary). Angles in degrees, as friction angles are.
   bool sliding_check = false;
+  // Joint corners kept closed over the whole run ("BLOCK/BLOCK:A", as results name them): the
+  // mechanism the structure would follow if those corners could not open (they may carry
+  // tension). Where two mechanisms release almost the same energy, holding the first one's hinge
+  // shows the second one's capacity (dem/README.md, "Branches").
+  std::vector<std::string> hold_closed;
 };
 
 // The DEM's settings, the case's "dem" section (dem/README.md has the model and the protocol).

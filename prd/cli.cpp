@@ -1,5 +1,6 @@
 // `masonry prd` and `masonry check`: thin front ends over prd_run and prd_check.
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,22 @@
 namespace masonry {
 
 namespace {
+
+// With corners held closed: the least force the LP's force state gives a held corner over the
+// run. Negative means the held path is carried by a tension there; where the held run's first
+// step also releases less energy than the free run's, no compressive force state can carry it
+// (LP duality), so a no-tension structure leaves that path (dem/README.md, "Branches").
+void report_held(const RunResult& r) {
+  double least = INFINITY, at = 0;
+  std::string which;
+  for (const StepRecord& s : r.steps)
+    if (s.extra.contains("held_corners"))
+      for (const auto& h : s.extra["held_corners"])
+        if (h["force"].get<double>() < least) least = h["force"].get<double>(), at = s.d, which = h["corner"].get<std::string>();
+  if (which.empty()) return;
+  std::cerr << "prd: held corners: the least force in the LP's force state is " << least << " N (" << which << ", d = " << at
+            << " m)" << (least < 0 ? ": negative, the force state pulls there (a tension)" : "") << "\n";
+}
 
 // Warns, before the LP is built, when the case is large enough for the analysis to take a
 // while: the simplex makes about two pivots per free block on a fresh LP, each costing in
@@ -92,6 +109,9 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     settings->add(sub, "--max-step", "prd.max_step", K::number,
                   "With --adaptive: the longest step, m (default: the smaller of 16 x --step and 0.4 sqrt(event tolerance x scene size), "
                   "1/250 of the scene at the default tolerance)");
+    settings->add(sub, "--hold", "prd.hold_closed", K::texts,
+                  "Keep this joint corner closed over the whole run (BLOCK/BLOCK:A or :B, as results name them; repeatable): "
+                  "the next mechanism's capacity where two are near-tied (dem/README.md, \"Branches\")");
     settings->add(sub, "--sliding", "prd.sliding_check", K::flag,
                   "Sliding check on every step: friction demand of the joint forces and the least friction angle "
                   "an admissible force state needs (results: extra \"sliding\")");
@@ -114,6 +134,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                                  << r.sliding->required_friction_angle << " deg (the most demanding: d = " << r.sliding->d
                                  << " m, joint " << r.sliding->joint << ")\n";
                      }
+                     report_held(r);
                      if (*friction >= 0) {
                        // Two answers: where the dual's own forces need more friction than the
                        // angle, and where every admissible force state does (sliding is then

@@ -41,6 +41,7 @@ struct Endpoint {
   int corner;    // 0 = A, 1 = B
   Vec2 X;        // material point (initial configuration), shared by both blocks at the start
   bool closed = true;
+  bool held = false;  // kept closed whatever the loads do (PrdOptions::hold_closed): its row an equality
 };
 
 struct Model {
@@ -169,7 +170,11 @@ double objective(const Model& m);        // of the last solve, in LP units
 double col_value(const Model& m, int j);  // column j's primal value (1-based)
 double corner_force(const Model& m, size_t e);  // dual of corner e's no-penetration row, N
 double corner_slack(const Model& m, size_t e);  // primal minus bound of that row, LP units
-void hold_closed(Model& m, size_t e);            // corner e's no-penetration row made an equality
+// Marks the corners named BLOCK/BLOCK:A held (Endpoint::held); throws naming the case for a name no corner has.
+void hold_corners(Model& m, const std::vector<std::string>& names);
+// The held corners' normal forces from the LP just solved (N; negative: the hold pulls, a tension
+// no-tension masonry cannot give), as the record's "held_corners".
+void record_held(const Model& m, StepRecord& rec);
 void read_forces(const Model& m, StepRecord& rec);
 std::vector<double> slacks(const Model& m, double scale);
 nlohmann::ordered_json collapse_mechanism(Model& m, double scale);

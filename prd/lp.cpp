@@ -123,7 +123,10 @@ void update_lp(Model& m, double h, double scale, double h_open) {
       if (r == 0) {
         double gap = (pj - pi).dot(n);
         if (!ep.closed && h_open > 0 && h_open < h) gap *= h / h_open;
-        glp_set_row_bnds(lp, row, GLP_LO, (-gap - known) / scale, 0);
+        // A held corner's gap is closed at the end of every step: no opening, and a tension if
+        // the loads ask for one.
+        const double lb = (-gap - known) / scale;
+        glp_set_row_bnds(lp, row, ep.held ? GLP_FX : GLP_LO, lb, ep.held ? lb : 0);
       } else if (m.sliding_row(e)) {
         // The tangential offset left by earlier finite updates is taken back here, so that
         // the drift of a closed corner never accumulates over the run.
@@ -181,11 +184,6 @@ LpStatus solve(Model& m) {
 
 void quiet_adv_basis(Model& m) { quiet_adv_basis(m.lp.get()); }
 double objective(const Model& m) { return glp_get_obj_val(m.lp.get()); }
-void hold_closed(Model& m, size_t e) {
-  const int row = 2 * static_cast<int>(e) + 1;
-  const double lb = glp_get_row_lb(m.lp.get(), row);
-  glp_set_row_bnds(m.lp.get(), row, GLP_FX, lb, lb);
-}
 double col_value(const Model& m, int j) { return glp_get_col_prim(m.lp.get(), j); }
 double corner_force(const Model& m, size_t e) { return glp_get_row_dual(m.lp.get(), 2 * static_cast<int>(e) + 1); }
 double corner_slack(const Model& m, size_t e) {

@@ -136,6 +136,30 @@ double gap_after(const Model& m, const Path& U, size_t e, double h) {
 }
 
 
+void hold_corners(Model& m, const std::vector<std::string>& names) {
+  for (const std::string& want : names) {
+    bool found = false;
+    for (size_t e = 0; e < m.ends.size(); ++e) {
+      const Interface& jt = m.joints[m.ends[e].joint];
+      if (corner_name(*m.c, jt.i, jt.j, m.ends[e].corner) != want) continue;
+      m.ends[e].held = found = true;
+    }
+    if (!found)
+      throw std::runtime_error(m.c->source + ": prd: field 'hold_closed': no joint corner '" + printable(want) +
+                               "' (names as BLOCK/BLOCK:A, the blocks in the results' order)");
+  }
+}
+
+void record_held(const Model& m, StepRecord& rec) {
+  nlohmann::ordered_json held = nlohmann::ordered_json::array();
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    if (!m.ends[e].held) continue;
+    const Interface& jt = m.joints[m.ends[e].joint];
+    held.push_back({{"corner", corner_name(*m.c, jt.i, jt.j, m.ends[e].corner)}, {"force", corner_force(m, e)}});
+  }
+  if (!held.empty()) rec.extra["held_corners"] = held;
+}
+
 void set_closed(Model& m, const std::vector<char>& closed) {
   for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = closed[e];
 }

@@ -117,7 +117,10 @@ struct Walk {
                                    tol_ev);
     d_end = s.max_steps * h_ref;
     h_plan = h_ref;
+    hold_corners(m, s.hold_closed);
+    // A held corner never opens, whatever its force does: no event to predict.
     ignored.assign(m.ends.size(), 0);
+    for (size_t e = 0; e < m.ends.size(); ++e) ignored[e] = m.ends[e].held;
     rec = configuration_record(m, 0, 0.0);
   }
 
@@ -238,6 +241,7 @@ void accept(Walk& w, const Solved& sv, RunResult& r) {
   if (w.passing >= 0 && m.ends[w.passing].closed && sv.opened.empty() && !w.ignored[w.passing]) w.ignored[w.passing] = 1;
   w.passing = -1;
   read_forces(m, w.rec);
+  record_held(m, w.rec);
   lp_check_fields(m, sv.h, w.rec);
   if (w.s.sliding_check) sliding_check(m, w.sliding, w.rec);
   require_finite(w.rec);
@@ -369,15 +373,10 @@ FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, cons
     const Interface& jt = m.joints[m.ends[e].joint];
     return corner_name(c, jt.i, jt.j, m.ends[e].corner);
   };
+  hold_corners(m, held_closed);
   // As the run's first step: the LP for a step h, open corners (none at the start) over h.
   update_lp(m, h, h, h);
   if (m.ncols > 0) quiet_adv_basis(m);
-  for (const std::string& want : held_closed) {
-    bool found = false;
-    for (size_t e = 0; e < m.ends.size(); ++e)
-      if (name(e) == want) hold_closed(m, e), found = true;
-    if (!found) throw std::runtime_error(c.source + ": no joint corner '" + printable(want) + "' (names as BLOCK/BLOCK:A, the blocks in the results' order)");
-  }
   FirstStep out;
   const LpStatus st = m.ncols == 0 ? LpStatus::optimal : solve(m);
   if (st == LpStatus::infeasible) throw std::runtime_error(c.source + ": the first step's LP is infeasible (the held corners cannot all stay closed)");
@@ -407,6 +406,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   r.case_name = c.name;
   Walk w(c, s);
   r.settings = {{"step", s.step}, {"max_steps", s.max_steps}, {"contact_tolerance", s.contact_tolerance}};
+  if (!s.hold_closed.empty()) r.settings["hold_closed"] = s.hold_closed;
   if (s.adaptive) {
     r.settings["adaptive"] = true;
     r.settings["event_tolerance"] = w.tol_ev;
