@@ -1,5 +1,7 @@
 #include "model/case.hpp"
 
+#include "model/fields.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -135,64 +137,12 @@ std::pair<int, int> line_col(const std::string& text, size_t offset) {
   return {line, col};
 }
 
-struct Reader {
-  std::string source;
-
-  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw CaseError(source + ": " + where + ": " + what);
-  }
-
-  void only(const json& obj, const std::string& where, std::initializer_list<const char*> keys) const {
-    if (!obj.is_object()) fail(where, "must be a JSON object");
-    for (auto it = obj.begin(); it != obj.end(); ++it) {
-      bool known = false;
-      for (const char* k : keys) known = known || it.key() == k;
-      if (!known) fail(where, "unknown field '" + printable(it.key()) + "'");
-    }
-  }
-
-  double number(const json& v, const std::string& where, const std::string& field) const {
-    if (!v.is_number()) fail(where, "field '" + field + "' must be a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(where, "field '" + field + "' is not a finite number");
-    return x;
-  }
-
-  double number(const json& obj, const std::string& where, const char* field, double dflt) const {
-    auto it = obj.find(field);
-    return it == obj.end() ? dflt : number(*it, where, field);
-  }
-
-  // The physically meaningful range of a quantity (README, "Ranges"): outside it the solvers'
-  // arithmetic (GLPK's scaled LPs, the DEM's time step and energies) overflows or loses every
-  // digit, so the case is refused before the first step.
-  void range(double x, double lo, double hi, const std::string& where, const std::string& field, const char* unit,
-             bool lo_open = false) const {
-    if ((lo_open ? x > lo : x >= lo) && x <= hi) return;
-    std::ostringstream m;
-    m << "field '" << field << "' = " << x << " is outside " << (lo_open ? "(" : "[") << lo << ", " << hi << "]"
-      << (*unit ? " " : "") << unit;
-    fail(where, m.str());
-  }
-
+// The case format's reader: the shared strict field checks (model/fields.hpp), and what only a
+// case has (points, block references).
+struct Reader : FieldReader<CaseError, json> {
   Vec2 point(const json& v, const std::string& where, const std::string& field) const {
     if (!v.is_array() || v.size() != 2) fail(where, "field '" + field + "' must be [x, y]");
     return Vec2(number(v[0], where, field), number(v[1], where, field));
-  }
-
-  bool boolean(const json& obj, const std::string& where, const char* field, bool dflt) const {
-    auto it = obj.find(field);
-    if (it == obj.end()) return dflt;
-    if (!it->is_boolean()) fail(where, std::string("field '") + field + "' must be true or false");
-    return it->get<bool>();
-  }
-
-  std::string string(const json& obj, const std::string& where, const char* field,
-                     const std::string& dflt) const {
-    auto it = obj.find(field);
-    if (it == obj.end()) return dflt;
-    if (!it->is_string()) fail(where, std::string("field '") + field + "' must be a string");
-    return it->get<std::string>();
   }
 
   int block_ref(const Case& c, const json& obj, const std::string& where) const {

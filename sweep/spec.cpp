@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cases/generators.hpp"
+#include "model/fields.hpp"
 #include "model/io.hpp"
 #include "sweep/sweep.hpp"
 
@@ -22,24 +23,8 @@ namespace {
 constexpr size_t kMaxValues = 10000;  // per key
 constexpr size_t kMaxRuns = 100000;   // per sweep: beyond this the table is no longer a table
 
-struct SpecReader {
-  std::string source;
-  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw SweepError(source + ": " + where + ": " + what);
-  }
-  double number(const ojson& v, const std::string& where, const std::string& field) const {
-    if (!v.is_number()) fail(where, "field '" + field + "' must be a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(where, "field '" + field + "' is not a finite number");
-    return x;
-  }
-  std::string string(const ojson& obj, const char* field, const std::string& dflt) const {
-    auto it = obj.find(field);
-    if (it == obj.end()) return dflt;
-    if (!it->is_string()) fail("sweep", std::string("field '") + field + "' must be a string");
-    return it->get<std::string>();
-  }
-};
+// The sweep format's reader: the harness's strict field checks (model/fields.hpp).
+using SpecReader = FieldReader<SweepError, ojson>;
 
 // Generated values are rounded to 15 significant digits, so a range from 0.1 by 0.1 gives 0.3
 // and not 0.30000000000000004: the table shows what a person would have typed.
@@ -155,11 +140,11 @@ SweepSpec parse_sweep(const std::string& text, const std::string& source) {
   SweepSpec s;
   s.source = source;
   if (!doc.contains("format")) r.fail("sweep", "field 'format' is required (\"masonry-sweep/1\")");
-  const std::string format = r.string(doc, "format", "");
+  const std::string format = r.string(doc, "sweep", "format", "");
   if (format != "masonry-sweep/1") r.fail("sweep", "field 'format': expected \"masonry-sweep/1\", got \"" + format + "\"");
-  s.name = r.string(doc, "name", "");
-  s.description = r.string(doc, "description", "");
-  s.case_ref = r.string(doc, "case", "");
+  s.name = r.string(doc, "sweep", "name", "");
+  s.description = r.string(doc, "sweep", "description", "");
+  s.case_ref = r.string(doc, "sweep", "case", "");
   if (s.case_ref.empty()) r.fail("sweep", "field 'case' must name a case file (*.json) or a standard case");
   if (doc.contains("methods")) {
     const ojson& m = doc["methods"];

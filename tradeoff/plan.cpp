@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "model/io.hpp"
+#include "model/fields.hpp"
 #include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
@@ -81,8 +82,9 @@ const char* kQuickPlan = R"({
 // nlohmann's two JSON types do not convert into each other directly.
 ojson to_ordered(const json& v) { return ojson::parse(v.dump()); }
 
+// The harness's message shape for a refused field (model/fields.hpp): "FILE: WHERE: what".
 [[noreturn]] void fail(const std::string& source, const std::string& where, const std::string& what) {
-  throw std::runtime_error(source + ": " + where + ": " + what);
+  FieldReader<std::runtime_error, ojson>{source}.fail(where, what);
 }
 
 // Plans are read in file order (ordered_json); option values are scalars, kept as plain json.
