@@ -1,5 +1,4 @@
-// The two methods a case runs by, as a type: parsed once from a file or a flag, never compared
-// as strings.
+// The two methods a case runs by, as a type, with their names in files and for people.
 #pragma once
 
 #include <optional>
