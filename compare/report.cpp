@@ -348,8 +348,10 @@ Document report_document(const Report& r, const std::vector<Figure>& figures, in
   Document d;
   d.title = c.name + ": " + run_labels(r);
   if (!c.description.empty()) d.paragraph({c.description});
-  if (!r.command.empty())
-    d.paragraph({"Made with ", Cell(r.command, CellStyle::code), " (report.html has the same figures and a slider over d)."});
+  if (!r.command.empty()) {
+    d.paragraph({"Made with ", Cell(r.command, CellStyle::code), " (report.html has the same figures and a slider over d)."}, Medium::markdown);
+    d.paragraph({"Made with ", Cell(r.command, CellStyle::code), "."}, Medium::html);
+  }
   d.table(headline(r));
   tolerance_section(d, r);
   d.heading(2, {"Capacities"});
