@@ -135,6 +135,11 @@ void add_common_options(CLI::App* sub, CompareOpts& o) {
   o.settings.add(sub, "--hold-time", "dem.hold_time", K::number, "DEM: model-time cap of each hold, s");
   o.settings.add(sub, "--move-time", "dem.move_time", K::number, "DEM: model time to travel one increment at constant speed, s (0: the servo)");
   o.settings.add(sub, "--damping", "dem.damping", K::number, "DEM: local damping coefficient in [0, 1)");
+  o.settings.add(sub, "--kinetic-ratio", "dem.kinetic_ratio", K::number,
+                 "DEM: the loading's kinetic energy limit over total weight x increment (dem/README.md, \"The loading rate\")");
+  o.settings.add(sub, "--hold", "prd.hold_closed", K::texts,
+                 "PRD: keep this joint corner closed over the whole run (BLOCK/BLOCK:A; repeatable), to follow a second mechanism "
+                 "(dem/README.md, \"Branches\")");
   sub->add_option("--frames", o.frames, "Slider positions in report.html (default 60, 24 for scenes over 60 blocks)")->check(CLI::NonNegativeNumber);
   sub->add_option("--tolerances", o.tolerances, "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true}: exit code 1 when one is exceeded");
   sub->add_flag("--quiet", o.quiet, "No progress lines");
