@@ -55,6 +55,16 @@ void progress(bool quiet, const std::string& line) {
   if (!quiet) std::cerr << line << std::flush;
 }
 
+// "PRD", or "PRD held A, B" when corners were held closed: a reader sees at once that the run
+// followed a constrained path.
+std::string prd_label(const nlohmann::json& held) {
+  std::string label = "PRD";
+  if (!held.is_array()) return label;
+  for (size_t k = 0; k < held.size(); ++k)
+    if (held[k].is_string()) label += (k ? ", " : " held ") + held[k].get<std::string>();
+  return label;
+}
+
 int run_compare(const Case& c, const CompareOpts& o, const std::string& case_shown) {
   std::optional<Tolerances> tol;
   if (!o.tolerances.empty()) tol = load_tolerances(o.tolerances);  // fail before any long run
@@ -68,6 +78,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       std::string label = r.method == "prd" ? "PRD" : r.method == "dem" ? "DEM" : r.method;
       if (r.method == "dem" && r.settings.contains("friction_angle") && r.settings["friction_angle"].is_number())
         label = dem_label(r.settings["friction_angle"].get<double>());
+      if (r.method == "prd" && r.settings.contains("hold_closed")) label = prd_label(r.settings["hold_closed"]);
       // Links in the report are relative to it.
       std::error_code ec;
       std::string rel = std::filesystem::relative(d, o.out_dir, ec).generic_string();
@@ -85,7 +96,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     progress(o.quiet, "compare: PRD on " + c.name + " ...\n");
     results.push_back(run_case(c, Method::prd, {o.out_dir + "/prd", {}}));
     progress(o.quiet, "compare: PRD capacity " + num_text(results.back().capacity) + " m, " + num_text(results.back().timing.total_s) + " s\n");
-    runs.push_back({"PRD", nullptr, "prd"});
+    runs.push_back({prd_label(results.back().settings.value("hold_closed", nlohmann::json::array())), nullptr, "prd"});
     std::vector<double> phis = o.frictions;
     if (phis.empty()) phis.push_back(c.dem.friction_angle);
     const Case dem_case = o.dem_step ? with_option(c, "motion.step", *o.dem_step) : c;
