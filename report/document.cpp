@@ -95,7 +95,7 @@ std::string html_body(const Document& d) {
     if (e.medium == Medium::markdown) continue;
     switch (e.kind) {
       case Element::Kind::heading: {
-        const std::string h = "h" + std::to_string(e.level);
+        const std::string h = std::string(1, 'h').append(std::to_string(e.level));  // (not "h" +: GCC 12's false -Wrestrict)
         o += "<" + h + ">" + html_text(e.text) + "</" + h + ">\n";
         break;
       }
