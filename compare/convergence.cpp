@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "compare/report.hpp"
 #include "report/document.hpp"
