@@ -69,6 +69,10 @@ class DemModel {
 
   double unbalanced_ratio() const;  // of the last cycle: max over free blocks of max(|F|,|M|/r)/W
   double max_speed() const;         // max over free blocks of |v| + |omega| r (r: radius of gyration)
+  // Of the last cycle: max over free blocks of the block's kinetic energy over its weight (plus
+  // its dead loads), m: the height the fastest block's motion would lift it. The move's servo
+  // reads it, so that a light block is loaded as gently as a heavy one.
+  double max_kinetic_per_weight() const;
   DemBlockState block(int b) const;
   // Energies at the time of the last force evaluation, J: kinetic, gravity (relative to the
   // start), elastic (joint springs), and the work done by the dead loads (relative to the start).

@@ -330,7 +330,7 @@ void DemModel::Impl::contact_forces() {
 }
 
 void DemModel::Impl::integrate() {
-  double unb = 0, spd = 0, kin = 0;
+  double unb = 0, spd = 0, kin = 0, kpw = 0;
   const double alpha = s.damping;
   const double half_margin = 0.5 * margin;
   bool due = false;
@@ -364,7 +364,9 @@ void DemModel::Impl::integrate() {
       const Vec2 v_new = vel[b] + dt * Fd / mass[b];
       const double w_new = spin[b] + dt * Md / inertia[b];
       // Kinetic energy at the force time: mean of the two half-step velocities.
-      kin += 0.5 * mass[b] * (0.5 * (v_new + vel[b])).squaredNorm() + 0.5 * inertia[b] * std::pow(0.5 * (w_new + spin[b]), 2);
+      const double kb = 0.5 * mass[b] * (0.5 * (v_new + vel[b])).squaredNorm() + 0.5 * inertia[b] * std::pow(0.5 * (w_new + spin[b]), 2);
+      kin += kb;
+      kpw = std::max(kpw, kb / wref[b]);
       vel[b] = v_new;
       spin[b] = w_new;
       pos[b] += dt * v_new;
@@ -381,6 +383,7 @@ void DemModel::Impl::integrate() {
   unbalanced = unb;
   speed = spd;
   ke = kin;
+  ke_per_weight = kpw;
 }
 
 DemModel::DemModel(const Case& c, const DemSettings& s) : p_(std::make_unique<Impl>(c, s)) { p_->setup(); }

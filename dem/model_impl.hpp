@@ -74,6 +74,7 @@ struct DemModel::Impl {
 
   // Diagnostics of the last cycle (the contact ones are summed from `pairs` on demand).
   double unbalanced = INFINITY, speed = INFINITY, ke = 0;
+  double ke_per_weight = INFINITY;  // m: max over free blocks of KE_b / wref_b
   double support_work = 0;  // J, done on the blocks by the moving supports since the start
 
   Impl(const Case& cs, const DemSettings& st) : c(cs), s(st) {}

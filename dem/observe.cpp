@@ -22,6 +22,7 @@ void DemModel::set_support_parameter(double d) { p_->d_target = d; }
 double DemModel::support_parameter() const { return p_->d_now; }
 double DemModel::unbalanced_ratio() const { return p_->unbalanced; }
 double DemModel::max_speed() const { return p_->speed; }
+double DemModel::max_kinetic_per_weight() const { return p_->ke_per_weight; }
 DemBlockState DemModel::block(int b) const {
   return {p_->pos[b], p_->ang[b], p_->vel[b], p_->spin[b]};
 }

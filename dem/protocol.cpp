@@ -126,7 +126,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
   return o;
 }
 
-MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_target,
+MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_height,
                  double start_speed, const Limits& lim) {
   MoveOutcome o;
   const double dt = m.dt();
@@ -150,7 +150,11 @@ MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, do
     return o;
   }
   // The servo: the speed follows the structure's kinetic energy, so a stiff, light structure is
-  // loaded fast and a tall, slow one slowly, each in the quasi-static regime the target sets. The
+  // loaded fast and a tall, slow one slowly, each in the quasi-static regime the target sets. It
+  // reads every block's kinetic energy over that block's own weight, not the whole structure's
+  // over the whole weight: a light aisle arch carried by a moving pier of a cathedral otherwise
+  // moves fast relative to its weight while most of the structure stands still, and the move's
+  // transient, not the structure, chooses its hinge (dem/README.md, "The loading rate"). The
   // floor bounds the move's length by the hold cap. The supports also brake at the servo's own
   // rate towards the end, so they stop without a shock: a block near its friction limit on a
   // support that stops at once slips (the tilting block slid 1.5 degrees early).
@@ -166,7 +170,7 @@ MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, do
     if (collapsed(o.cycles)) break;
     // Braking from v at kDown per cycle travels v dt / (1 - kDown).
     const bool brake = d1 - d < v * dt / (1 - kDown);
-    v = !brake && m.kinetic_energy() < ke_target ? v * kUp : std::max(floor, v * kDown);
+    v = !brake && m.max_kinetic_per_weight() < ke_height ? v * kUp : std::max(floor, v * kDown);
   }
   o.speed = v;
   return o;

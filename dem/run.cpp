@@ -49,7 +49,10 @@ struct Run {
   std::vector<Interface> joints;
   DemModel m;
   dem::Limits lim;
-  double ke_per_d = 0;  // J per m of d: the kinetic energy a move may carry, the servo's target
+  // The servo's target, m per m of d: the kinetic energy a block may carry during a move, over its
+  // own weight (kinetic_ratio x support travel).
+  double ke_height_per_d = 0;
+  double ke_per_d = 0;  // J per m of d: the same for the whole structure, the hold's runaway scale
   double bracket = 0;   // m: the collapse bracket's width
   // Corner gaps of the settled initial configuration: hinges are measured from them.
   std::vector<double> settled_gaps;
@@ -157,11 +160,10 @@ void settled_at(Run& u, const Attempt& a, double d, bool bracketing) {
 Attempt attempt(Run& u, double d0, double d1, long long watch = 0) {
   Attempt a;
   const long long c0 = u.m.cycles();
-  const double ke_target = u.ke_per_d * (d1 - d0);
-  u.lim.ke_collapse = 10 * ke_target;
+  u.lim.ke_collapse = 10 * u.ke_per_d * (d1 - d0);
   u.lim.move_drift = u.lim.collapse_drift + support_travel_per_d(u.c) * (d1 - d0);
   const std::vector<Vec2> before = dem::positions(u.m, u.c);
-  const dem::MoveOutcome mv = dem::move(u.m, u.c, u.s, d0, d1, ke_target, u.speed / 4, u.lim);
+  const dem::MoveOutcome mv = dem::move(u.m, u.c, u.s, d0, d1, u.ke_height_per_d * (d1 - d0), u.speed / 4, u.lim);
   u.speed = mv.speed;
   a.move_cycles = mv.cycles;
   a.move_drift = dem::largest_move(u.m, u.c, before);
@@ -302,7 +304,8 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   // snaps the pointed arch by 4 mm (0.2% of its size) to a new equilibrium near d = 0.09 m.
   u.lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
   u.lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
-  u.ke_per_d = s.kinetic_ratio * r.total_weight * support_travel_per_d(c);
+  u.ke_height_per_d = s.kinetic_ratio * support_travel_per_d(c);
+  u.ke_per_d = u.ke_height_per_d * r.total_weight;
   u.bracket = s.bracket_fraction * s.step;
   record_settings(u);
   try {
