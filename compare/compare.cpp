@@ -18,8 +18,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// JSON has no NaN: a missing number is null, never a made-up 0.
-ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 
 std::string fmt(double x, int prec = 4) {
   if (!std::isfinite(x)) return "n/a";
@@ -104,13 +102,13 @@ ojson summary_json(const RunSummary& s) {
   ojson j;
   j["label"] = s.label;
   j["method"] = s.method;
-  j["capacity"] = num(s.capacity);
+  j["capacity"] = json_number(s.capacity);
   j["collapsed"] = s.collapsed;
   j["stopped"] = status_name(s.status);
-  j["step"] = num(s.step);
-  j["time_s"] = num(s.time_s);
+  j["step"] = json_number(s.step);
+  j["time_s"] = json_number(s.time_s);
   ojson ch = ojson::array();
-  for (double d : s.changes) ch.push_back(num(d));
+  for (double d : s.changes) ch.push_back(json_number(d));
   j["mechanism_changes"] = ch;
   return j;
 }
@@ -386,25 +384,25 @@ ojson to_json(const Comparison& k) {
   j["case"] = k.case_name;
   j["a"] = summary_json(k.a);
   j["b"] = summary_json(k.b);
-  j["total_weight"] = num(k.total_weight);
-  j["capacity"] = {{"a", num(k.a.capacity)}, {"b", num(k.b.capacity)}, {"relative_difference", num(k.capacity_rel_diff)}};
+  j["total_weight"] = json_number(k.total_weight);
+  j["capacity"] = {{"a", json_number(k.a.capacity)}, {"b", json_number(k.b.capacity)}, {"relative_difference", json_number(k.capacity_rel_diff)}};
   ojson t;
-  t["common_range"] = ojson::array({0.0, num(k.d_max)});
-  t["max_difference"] = num(k.thrust_max_diff);
-  t["max_difference_at"] = {{"d", num(k.thrust_max_d)}, {"component", k.thrust_max_where}};
-  t["rms_difference"] = num(k.thrust_rms_diff);
+  t["common_range"] = ojson::array({0.0, json_number(k.d_max)});
+  t["max_difference"] = json_number(k.thrust_max_diff);
+  t["max_difference_at"] = {{"d", json_number(k.thrust_max_d)}, {"component", k.thrust_max_where}};
+  t["rms_difference"] = json_number(k.thrust_rms_diff);
   ojson d = ojson::array();
-  for (double x : k.d) d.push_back(num(x));
+  for (double x : k.d) d.push_back(json_number(x));
   t["d"] = d;
   ojson sup = ojson::array();
   const auto arr = [](const std::vector<double>& v) {
     ojson a = ojson::array();
-    for (double x : v) a.push_back(num(x));
+    for (double x : v) a.push_back(json_number(x));
     return a;
   };
   for (const SupportCurve& s : k.supports)
     sup.push_back({{"support", s.support},
-                   {"max_difference", num(s.max_diff)},
+                   {"max_difference", json_number(s.max_diff)},
                    {"H_a", arr(s.h_a)},
                    {"V_a", arr(s.v_a)},
                    {"H_b", arr(s.h_b)},
@@ -416,16 +414,16 @@ ojson to_json(const Comparison& k) {
     ojson ha = ojson::array(), hb = ojson::array();
     for (const Hinge& x : h.a) ha.push_back(x.label);
     for (const Hinge& x : h.b) hb.push_back(x.label);
-    hc.push_back({{"d", num(h.d)},
-                  {"d_a", num(h.d_a)},
-                  {"d_b", num(h.d_b)},
+    hc.push_back({{"d", json_number(h.d)},
+                  {"d_a", json_number(h.d_a)},
+                  {"d_b", json_number(h.d_b)},
                   {"a", ha},
                   {"b", hb},
                   {"match", h.match},
                   {"mirror", h.mirror}});
   }
   j["hinges"] = {{"symmetric", k.symmetric}, {"checks", hc}};
-  j["timing"] = {{"a_s", num(k.a.time_s)}, {"b_s", num(k.b.time_s)}, {"ratio", num(k.time_ratio)}};
+  j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }
 

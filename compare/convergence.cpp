@@ -36,7 +36,6 @@ ojson parting_json(const std::optional<Parting>& p) {
   return {{"d", p->d}, {"only_this", p->only_a}, {"only_other", p->only_b}};
 }
 
-ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 
 }  // namespace
 
@@ -78,8 +77,8 @@ ojson convergence_json(const Convergence& c) {
   j["prd_capacity"] = c.prd_capacity ? ojson(*c.prd_capacity) : ojson(nullptr);
   j["spread_limit"] = c.spread_limit;
   j["prd_limit"] = c.prd_limit;
-  j["spread"] = num(v.spread);
-  j["prd_error"] = num(v.prd_error);
+  j["spread"] = json_number(v.spread);
+  j["prd_error"] = json_number(v.prd_error);
   j["ok"] = v.ok;
   j["problems"] = v.problems;
   ojson runs = ojson::array();
@@ -90,8 +89,8 @@ ojson convergence_json(const Convergence& c) {
     r["what"] = e.what;
     r["stopped"] = status_name(e.run.status);
     r["capacity"] = located(e.run.status) ? ojson(e.run.capacity) : ojson(nullptr);
-    r["against_default"] = located(e.run.status) && base > 0 ? num((e.run.capacity - base) / base) : ojson(nullptr);
-    r["against_prd"] = located(e.run.status) && c.prd_capacity ? num((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : ojson(nullptr);
+    r["against_default"] = located(e.run.status) && base > 0 ? json_number((e.run.capacity - base) / base) : ojson(nullptr);
+    r["against_prd"] = located(e.run.status) && c.prd_capacity ? json_number((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : ojson(nullptr);
     r["bracket_width"] = e.run.extra.contains("collapse_bracket") ? e.run.extra["collapse_bracket"]["width"] : ojson(nullptr);
     r["cpu_s"] = e.run.timing.total_s;
     r["cycles"] = e.run.timing.cycles;

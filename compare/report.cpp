@@ -20,7 +20,6 @@ namespace {
 const char* kRunColors[] = {"#4a4a4a", "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00"};
 
 using fmt::mm;
-ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 // A ratio without an exponent: 0.5, 12.3, 2270.
 std::string ratio(double x) { return fmt::number(x, x >= 100 ? "%.0f" : "%.3g", x); }
 
@@ -122,10 +121,10 @@ ojson report_json(const Report& r) {
     runs.push_back({{"label", rr.label},
                     {"method", rr.run->method},
                     {"dir", rr.dir},
-                    {"capacity", num(rr.run->capacity)},
+                    {"capacity", json_number(rr.run->capacity)},
                     {"collapsed", rr.run->collapsed},
                     {"stopped", status_name(rr.run->status)},
-                    {"time_s", num(rr.run->timing.total_s)},
+                    {"time_s", json_number(rr.run->timing.total_s)},
                     {"settings", rr.run->settings}});
   j["runs"] = runs;
   ojson cs = ojson::array();
@@ -133,8 +132,8 @@ ojson report_json(const Report& r) {
     ojson c = to_json(r.comparisons[k]);
     if (r.tolerances_checked) {
       ojson lim;
-      lim["capacity"] = r.tolerances.capacity ? num(*r.tolerances.capacity) : ojson(nullptr);
-      lim["thrust"] = r.tolerances.thrust ? num(*r.tolerances.thrust) : ojson(nullptr);
+      lim["capacity"] = r.tolerances.capacity ? json_number(*r.tolerances.capacity) : ojson(nullptr);
+      lim["thrust"] = r.tolerances.thrust ? json_number(*r.tolerances.thrust) : ojson(nullptr);
       lim["hinges"] = r.tolerances.hinges;
       c["tolerances"] = {{"limits", lim}, {"pass", r.violations[k].empty()}, {"violations", r.violations[k]}};
     }

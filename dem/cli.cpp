@@ -1,9 +1,12 @@
 // `masonry dem CASE --out DIR`: the DEM capacity run, written as it goes.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
+#include <vector>
 
 #include "app/command.hpp"
 #include "app/flags.hpp"
@@ -24,7 +27,42 @@ struct Opts {
   bool quiet = false, convergence = false;
   int jobs = 2;
   double spread_limit = 0.02, prd_limit = 0.03;
+  std::vector<std::string> only;  // convergence: the variants to run; the others are read back
+  bool read_back = false;         // convergence: read every run back, run none
 };
+
+// The convergence study's runs: every variant, or with --only the named ones (none with
+// --read-back), the others read back from DIR/<variant>/results.json of an earlier study (a
+// finished run, or a refusal).
+std::vector<RunResult> convergence_runs(const Case& c, const std::vector<DemVariant>& variants, const Opts& o,
+                                        const std::function<void(size_t, const RunResult&)>& on_done) {
+  if (o.only.empty() && !o.read_back) return run_variants(c, variants, o.jobs, o.out_dir, on_done);
+  std::vector<size_t> rerun;  // indices into variants
+  for (const std::string& name : o.only) {
+    const auto it = std::find_if(variants.begin(), variants.end(), [&](const DemVariant& v) { return v.name == name; });
+    if (it == variants.end()) throw std::invalid_argument("dem --only: no variant '" + name + "' in the convergence study");
+    rerun.push_back(static_cast<size_t>(it - variants.begin()));
+  }
+  std::vector<RunResult> runs(variants.size());
+  std::vector<DemVariant> to_run;
+  for (size_t i = 0; i < variants.size(); ++i) {
+    if (std::count(rerun.begin(), rerun.end(), i)) {
+      to_run.push_back(variants[i]);
+      continue;
+    }
+    const std::string path = (std::filesystem::path(o.out_dir) / variants[i].name / "results.json").string();
+    if (!std::filesystem::exists(path)) throw std::invalid_argument("dem convergence: " + path + " is missing: run the whole study first");
+    runs[i] = load_results(path, c);
+    if (runs[i].status == RunStatus::running) throw std::invalid_argument("dem convergence: " + path + " is a run that did not finish");
+  }
+  // to_run is in variants' order, and so is rerun once sorted.
+  std::sort(rerun.begin(), rerun.end());
+  rerun.erase(std::unique(rerun.begin(), rerun.end()), rerun.end());
+  const std::vector<RunResult> fresh =
+      run_variants(c, to_run, o.jobs, o.out_dir, [&](size_t k, const RunResult& r) { if (on_done) on_done(rerun[k], r); });
+  for (size_t k = 0; k < rerun.size(); ++k) runs[rerun[k]] = fresh[k];
+  return runs;
+}
 
 // The convergence study: PRD once for reference, the DEM variants in parallel, each written to
 // DIR/<variant>/ as it goes, then the verdict.
@@ -38,7 +76,7 @@ int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
   if (located(study.prd->status)) study.prd_capacity = study.prd->capacity;
   const std::vector<DemVariant> variants = convergence_variants(base);
   std::mutex io;
-  const std::vector<RunResult> runs = run_variants(c, variants, o.jobs, o.out_dir, [&](size_t i, const RunResult& r) {
+  const std::vector<RunResult> runs = convergence_runs(c, variants, o, [&](size_t i, const RunResult& r) {
     if (o.quiet) return;
     std::lock_guard<std::mutex> lock(io);
     std::fprintf(stderr, "dem convergence: %-15s %s, capacity %.6g m, %.3g s CPU\n", variants[i].name.c_str(), status_name(r.status),
@@ -86,7 +124,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   f.add(sub, "--hold-time", "dem.hold_time", K::number, "Model-time cap of one hold, s: a hold that neither settles nor runs away by then is undecided (default 30)");
   f.add(sub, "--step", "motion.step", K::number, "Increment of the support path parameter d, m");
   f.add(sub, "--max-steps", "motion.max_steps", K::integer, "Number of increments at most");
-  f.add(sub, "--kinetic-ratio", "dem.kinetic_ratio", K::number, "Moves keep the kinetic energy below this x total weight x increment (default 1e-3)");
+  f.add(sub, "--kinetic-ratio", "dem.kinetic_ratio", K::number, "Moves keep every block's kinetic energy below this x its weight x support travel over the increment (default 1e-3)");
   f.add(sub, "--move-time", "dem.move_time", K::number, "Constant-speed move over this model time per increment, s, instead of the kinetic-energy servo (default 0: servo)");
   f.add(sub, "--bracket-fraction", "dem.bracket_fraction", K::number, "Bisect a failed increment down to this fraction of the step (default 0.01; 0: no bisection)");
   f.add(sub, "--confirm-collapse", "dem.confirm_collapse", K::flag,
@@ -102,6 +140,11 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   sub->add_option("--jobs", o->jobs, "Convergence study: runs at a time, one thread each (default 2)")->check(CLI::PositiveNumber);
   sub->add_option("--spread-limit", o->spread_limit, "Convergence study: largest (max - min) / default capacity (default 0.02)");
   sub->add_option("--prd-limit", o->prd_limit, "Convergence study: largest |default - PRD| / PRD capacity (default 0.03)");
+  sub->add_option("--only", o->only,
+                  "Convergence study: run only these variants again and read the others back from DIR/<variant>/results.json "
+                  "(of a study run with the same binary and settings: the results do not say which code made them)");
+  sub->add_flag("--read-back", o->read_back,
+                "Convergence study: run no variant, read them all back from DIR/<variant>/results.json and write the study again");
   out.push_back({sub, [o]() {
                    const Case c = o->settings.apply(load_case(o->case_path));
                    const DemSettings s = DemSettings::from_case(c);

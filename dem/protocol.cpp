@@ -19,6 +19,13 @@ constexpr long long kCheckEvery = 64;
 constexpr long long kFirstWindow = 1024;
 constexpr int kRisingWindows = 3;
 
+// The servo's rates and the hold's first window are set in cycles at the default time-step
+// factor and kept in model time at any other: the time step is a numerical setting, so halving it
+// must not make the supports speed up and brake twice as fast in model time (which loads the
+// structure more abruptly), nor make the hold's windows half as long. Returns how many default
+// cycles one cycle is: exactly 1 at the default.
+double default_cycles_per_cycle(const DemSettings& s) { return s.timestep_factor / DemOptions{}.timestep_factor; }
+
 // A state that is no longer finite stops the run before anything is recorded (the sum of the
 // kinetic energies carries a NaN or infinity from any block).
 void check_finite(const DemModel& m) {
@@ -91,7 +98,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
   const std::vector<Vec2> start = positions(m, c);
   const long long budget = static_cast<long long>(std::ceil(s.hold_time / m.dt()));
   double window_peak = 0, last_peak = INFINITY;
-  long long window_end = kFirstWindow;
+  long long window_end = std::max(1LL, std::llround(static_cast<double>(kFirstWindow) / default_cycles_per_cycle(s)));
   int rising = 0;
   for (long long k = 0; k < budget; ++k) {
     m.cycle();
@@ -159,7 +166,8 @@ MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, do
   // rate towards the end, so they stop without a shock: a block near its friction limit on a
   // support that stops at once slips (the tilting block slid 1.5 degrees early).
   const double floor = (d1 - d0) / s.hold_time;
-  constexpr double kUp = 1.002, kDown = 0.98;
+  const double per = default_cycles_per_cycle(s);
+  const double kUp = std::pow(1.002, per), kDown = std::pow(0.98, per);
   double v = std::max(start_speed, floor), d = d0;
   while (d < d1) {
     d = std::min(d1, d + v * dt);

@@ -58,7 +58,8 @@ struct MoveOutcome {
 
 // Carries the supports from path parameter d0 to d1. Servoed (move_time 0): the speed grows by
 // 0.2% per cycle while every block's kinetic energy over its weight is below `ke_height` (m) and
-// shrinks by 2% per cycle while some block's is above and while braking to stop at d1, starting
+// shrinks by 2% per cycle while some block's is above and while braking to stop at d1 (cycles of
+// the default time-step factor: the rates are kept in model time at any other), starting
 // from `start_speed`, never below (d1 - d0) / hold_time; with move_time > 0, the constant-speed
 // move with half-cosine ramps.
 MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_height,

@@ -94,11 +94,11 @@ struct DemOptions {
   // reaches this cap without either is "undecided" (never a capacity, never an error).
   double hold_time = 30.0;
   // The quasi-static protocol (dem/README.md). While the supports move, their speed is servoed so
-  // that the kinetic energy of the blocks stays below kinetic_ratio x total weight x the move's
-  // length: the loading rate follows from the structure's own response. (At 1e-3 the light right
-  // aisle arch of cathedral-settlement-rotation, carried by its moving pier, moves fast enough to
-  // open the hinge on the other side of its crown; the answer stops moving below 2.5e-4:
-  // dem/README.md, "The loading rate".)
+  // that every block's kinetic energy stays below kinetic_ratio x its own weight x the support
+  // travel over the move: the loading rate follows from the structure's own response. (A target
+  // on the whole structure's energy over its whole weight let the light right aisle arch of
+  // cathedral-settlement-rotation, carried by its moving pier, move fast enough to open the hinge
+  // on the other side of its crown: dem/README.md, "The loading rate".)
   double kinetic_ratio = 1e-3;
   // move_time > 0 replaces the servo by a move at constant speed over that model time (s, the
   // paper's protocol), with smooth (half-cosine) speed ramps over `ramp_fraction` of it at each

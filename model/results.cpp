@@ -13,10 +13,10 @@ namespace masonry {
 
 using ojson = nlohmann::ordered_json;
 
+ojson json_number(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
+
 namespace {
-// JSON has no NaN or infinity: a non-finite number is written as null, never silently as 0.
-ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
-ojson vec(const Vec2& v) { return ojson::array({num(v.x()), num(v.y())}); }
+ojson vec(const Vec2& v) { return ojson::array({json_number(v.x()), json_number(v.y())}); }
 }  // namespace
 
 const char* status_name(RunStatus s) {
@@ -46,17 +46,17 @@ ojson to_json(const RunResult& r, const Case& c) {
   j["units"] = "SI: m, N, J, s, rad";
   j["method"] = r.method;
   j["case"] = r.case_name;
-  j["capacity"] = num(r.capacity);
+  j["capacity"] = json_number(r.capacity);
   j["stable_steps"] = r.stable_steps;
   j["collapsed"] = r.collapsed;
   j["stopped"] = status_name(r.status);
   if (!r.message.empty()) j["message"] = r.message;
-  j["total_weight"] = num(r.total_weight);
+  j["total_weight"] = json_number(r.total_weight);
   j["settings"] = r.settings;
   ojson t;
-  t["total_s"] = num(r.timing.total_s);
+  t["total_s"] = json_number(r.timing.total_s);
   if (r.method == "prd") {
-    t["lp_s"] = num(r.timing.lp_s);
+    t["lp_s"] = json_number(r.timing.lp_s);
     t["lp_solves"] = r.timing.lp_solves;
     t["basis_evaluations"] = r.timing.basis_evaluations;
   } else {
@@ -79,27 +79,27 @@ ojson to_json(const RunResult& r, const Case& c) {
   for (const StepRecord& s : r.steps) {
     ojson js;
     js["step"] = s.index;
-    js["d"] = num(s.d);
-    js["energy"] = num(s.energy);
+    js["d"] = json_number(s.d);
+    js["energy"] = json_number(s.energy);
     ojson oc = ojson::array();
-    for (const OpenCorner& o : s.open_corners) oc.push_back({{"joint", o.joint}, {"corner", o.corner == 0 ? "A" : "B"}, {"gap", num(o.gap)}});
+    for (const OpenCorner& o : s.open_corners) oc.push_back({{"joint", o.joint}, {"corner", o.corner == 0 ? "A" : "B"}, {"gap", json_number(o.gap)}});
     js["open_corners"] = oc;
     js["cracked"] = s.cracked;
     ojson re = ojson::array();
-    for (const Reaction& x : s.reactions) re.push_back({{"support", x.support}, {"force", vec(x.force)}, {"moment", num(x.moment)}});
+    for (const Reaction& x : s.reactions) re.push_back({{"support", x.support}, {"force", vec(x.force)}, {"moment", json_number(x.moment)}});
     js["reactions"] = re;
     ojson po = ojson::array();
-    for (const Pose& p : s.poses) po.push_back(ojson::array({num(p.x), num(p.y), num(p.angle)}));
+    for (const Pose& p : s.poses) po.push_back(ojson::array({json_number(p.x), json_number(p.y), json_number(p.angle)}));
     js["poses"] = po;
     ojson fo = ojson::array();
     for (const JointForce& f : s.forces)
-      fo.push_back({{"joint", f.joint}, {"normal", num(f.normal)}, {"shear", num(f.shear)}, {"point", vec(f.point)}, {"n", vec(f.n)}});
+      fo.push_back({{"joint", f.joint}, {"normal", json_number(f.normal)}, {"shear", json_number(f.shear)}, {"point", vec(f.point)}, {"n", vec(f.n)}});
     js["forces"] = fo;
     for (auto it = s.extra.begin(); it != s.extra.end(); ++it) js[it.key()] = it.value();
     if (s.sliding)
-      js["sliding"] = {{"demand_angle", num(s.sliding->demand_angle)},
+      js["sliding"] = {{"demand_angle", json_number(s.sliding->demand_angle)},
                        {"demand_joint", s.sliding->demand_joint},
-                       {"required_angle", num(s.sliding->required_angle)},
+                       {"required_angle", json_number(s.sliding->required_angle)},
                        {"required_joint", s.sliding->required_joint}};
     steps.push_back(js);
   }
@@ -109,12 +109,12 @@ ojson to_json(const RunResult& r, const Case& c) {
     const SlidingSummary& x = *r.sliding;
     ojson o = ojson::object();
     if (x.any) {
-      o["required_friction_angle"] = num(x.required_friction_angle);
-      o["d"] = num(x.d);
+      o["required_friction_angle"] = json_number(x.required_friction_angle);
+      o["d"] = json_number(x.d);
       o["step"] = x.step;
       o["joint"] = x.joint;
-      o["max_demand_angle"] = num(x.max_demand_angle);
-      o["demand_d"] = num(x.demand_d);
+      o["max_demand_angle"] = json_number(x.max_demand_angle);
+      o["demand_d"] = json_number(x.demand_d);
       o["demand_joint"] = x.demand_joint;
     }
     o["lp_solves"] = x.lp_solves;

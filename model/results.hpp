@@ -127,6 +127,9 @@ struct RunResult {
 // Throws std::runtime_error naming the step and the quantity when a record holds a number that
 // is not finite: a run whose state turned non-finite stops with an error, never a result.
 void require_finite(const StepRecord& s);
+// JSON has no NaN or infinity: a non-finite number is written as null, never silently as 0.
+// Every JSON writer (results, comparisons, sweeps, trade-offs) writes its numbers through this.
+nlohmann::ordered_json json_number(double x);
 
 nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
 // One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.

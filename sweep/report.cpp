@@ -21,7 +21,6 @@ using ojson = nlohmann::ordered_json;
 
 namespace {
 
-ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 using fmt::pct;
 using fmt::px;
 using fmt::secs;
@@ -146,11 +145,11 @@ ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s)
                     {"method", run.method},
                     {"parameters", params},
                     {"stopped", status_name(row->status)},
-                    {"capacity", row->status == RunStatus::error ? ojson(nullptr) : num(row->capacity)},
-                    {"time_s", num(row->time_s)},
+                    {"capacity", row->status == RunStatus::error ? ojson(nullptr) : json_number(row->capacity)},
+                    {"time_s", json_number(row->time_s)},
                     {"prd_run", run.prd >= 0 ? ojson(run.prd) : ojson(nullptr)},
-                    {"diff_prd", d ? num(*d) : ojson(nullptr)},
-                    {"required_friction_angle", row->required_friction_angle ? num(*row->required_friction_angle) : ojson(nullptr)},
+                    {"diff_prd", d ? json_number(*d) : ojson(nullptr)},
+                    {"required_friction_angle", row->required_friction_angle ? json_number(*row->required_friction_angle) : ojson(nullptr)},
                     {"message", row->message}});
   }
   j["runs"] = runs;
@@ -162,9 +161,9 @@ ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s)
     const SweepRow* pr = curve_prd(p, t, c);
     curves.push_back({{"parameters", fixed},
                       {"runs", c.runs},
-                      {"prd_capacity", pr ? num(pr->capacity) : ojson(nullptr)},
-                      {"prd_required_friction_angle", pr && pr->required_friction_angle ? num(*pr->required_friction_angle) : ojson(nullptr)},
-                      {"boundary", c.boundary ? num(*c.boundary) : ojson(nullptr)},
+                      {"prd_capacity", pr ? json_number(pr->capacity) : ojson(nullptr)},
+                      {"prd_required_friction_angle", pr && pr->required_friction_angle ? json_number(*pr->required_friction_angle) : ojson(nullptr)},
+                      {"boundary", c.boundary ? json_number(*c.boundary) : ojson(nullptr)},
                       {"boundary_clean", c.boundary_clean}});
   }
   j["curves"] = curves;

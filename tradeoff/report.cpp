@@ -24,7 +24,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-ojson num(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 ojson to_ordered(const nlohmann::json& v) { return ojson::parse(v.dump()); }
 
 std::string value_text(const nlohmann::json& v) {
@@ -237,7 +236,7 @@ ojson tradeoff_json(const Tradeoff& t) {
   for (const CaseOption& o : t.base) j["base"][o.key] = to_ordered(o.value);
   j["methods"] = t.methods;
   j["plan"] = plan_to_json(t.plan);
-  j["targets"] = {{"capacity", num(t.target_capacity)}, {"thrust", num(t.target_thrust)}};
+  j["targets"] = {{"capacity", json_number(t.target_capacity)}, {"thrust", json_number(t.target_thrust)}};
   j["rows"] = ojson::array();
   for (const Row& r : t.rows) {
     ojson x;
@@ -250,16 +249,16 @@ ojson tradeoff_json(const Tradeoff& t) {
     for (const CaseOption& o : r.options) x["options"][o.key] = to_ordered(o.value);
     x["stopped"] = status_name(r.status);
     if (!r.message.empty()) x["message"] = r.message;
-    x["capacity"] = num(r.capacity);
-    x["capacity_err"] = num(r.capacity_err);
-    x["thrust_max_err"] = num(r.thrust_max_err);
-    x["thrust_rms_err"] = num(r.thrust_rms_err);
-    x["thrust_range"] = num(r.thrust_range);
-    x["time_s"] = num(r.time_s);
-    x["time_min_s"] = num(r.time_min_s);
-    x["time_max_s"] = num(r.time_max_s);
+    x["capacity"] = json_number(r.capacity);
+    x["capacity_err"] = json_number(r.capacity_err);
+    x["thrust_max_err"] = json_number(r.thrust_max_err);
+    x["thrust_rms_err"] = json_number(r.thrust_rms_err);
+    x["thrust_range"] = json_number(r.thrust_range);
+    x["time_s"] = json_number(r.time_s);
+    x["time_min_s"] = json_number(r.time_min_s);
+    x["time_max_s"] = json_number(r.time_max_s);
     x["time_kind"] = r.cpu ? "cpu" : "wall";
-    x["wall_s"] = num(r.wall_s);
+    x["wall_s"] = json_number(r.wall_s);
     x["repeats"] = r.repeats;
     x["lp_solves"] = r.lp_solves;
     x["cycles"] = r.cycles;
@@ -279,8 +278,8 @@ ojson tradeoff_json(const Tradeoff& t) {
       for (size_t i : f.front) e["front"].push_back(rows[i].label);
       e["best_buys"] = ojson::array();
       for (const Buy& b : f.buys)
-        e["best_buys"].push_back({{"from", rows[b.from].label}, {"to", rows[b.to].label}, {"error_reduction", num(b.gain)},
-                                  {"extra_s", num(b.cost_s)}, {"per_s", num(b.rate)}});
+        e["best_buys"].push_back({{"from", rows[b.from].label}, {"to", rows[b.to].label}, {"error_reduction", json_number(b.gain)},
+                                  {"extra_s", json_number(b.cost_s)}, {"per_s", json_number(b.rate)}});
       m[k == ErrorKind::capacity ? "capacity" : "thrust"] = e;
     }
     j["pareto"][method] = m;

@@ -218,6 +218,31 @@ TEST(DemLoading, AHeavyBlockAtRestElsewhereDoesNotSpeedUpTheMove) {
   EXPECT_NEAR(r1.capacity, r0.capacity, alone.dem.bracket_fraction * alone.motion.step + 2 * tipping_resolution(b, h));
 }
 
+// The time step is a numerical setting: at half the default time-step factor the supports move
+// as they do at the default in model time (the servo's rates are kept per unit of model time),
+// so the first move takes the same model time and twice the cycles, and the block topples at
+// the same tilt. With the rates per cycle, the move took the same cycles, half the model time.
+TEST(DemLoading, TheTimeStepDoesNotChangeTheLoading) {
+  const double b = 0.2, h = 0.4;
+  Case full = test::tilt_case(b, h, 45);
+  Case half = full;
+  half.dem.timestep_factor = full.dem.timestep_factor / 2;
+  const RunResult r0 = test::tilt_run(full);
+  const RunResult r1 = test::tilt_run(half);
+  ASSERT_EQ(r0.status, RunStatus::collapse) << r0.message;
+  ASSERT_EQ(r1.status, RunStatus::collapse) << r1.message;
+  const auto move_time = [](const RunResult& r) {
+    return r.steps.at(1).extra.at("move_cycles").get<double>() * r.settings.at("dt").get<double>();
+  };
+  EXPECT_NEAR(move_time(r1), move_time(r0), 0.05 * move_time(r0));
+  // Both topple at atan(b/h), less the soft joints' early tipping (overlap / b, 0.07 degrees:
+  // DemBracket.ACollapseDuringAMoveIsACollapse).
+  for (const RunResult* r : {&r0, &r1}) {
+    EXPECT_LE(r->capacity, std::atan(b / h) + 2 * tipping_resolution(b, h));
+    EXPECT_GT(r->capacity, std::atan(b / h) - 0.1 * kDeg);
+  }
+}
+
 // The bracket goes back to a saved equilibrium: a restored model replays the same cycles bit for
 // bit.
 TEST(DemModelState, RestoreReplaysExactly) {
@@ -307,6 +332,31 @@ TEST(DemConvergence, CommandWritesTheStudy) {
   EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --convergence --prd-limit 1e-9 --out " +
                       (d.path / "out2").string() + " --quiet 2>/dev/null"),
             1);
+  // --only runs the named variant again and reads the others back: the study is the same, and a
+  // read-back run keeps its file untouched (the deterministic DEM gives the rerun's capacity
+  // again).
+  const auto stamp = std::filesystem::last_write_time(d.path / "out" / "default" / "results.json");
+  const std::string base = std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --convergence --quiet --out " +
+                           (d.path / "out").string();
+  EXPECT_EQ(test::run(base + " --only damping 2>/dev/null"), 0);
+  EXPECT_EQ(std::filesystem::last_write_time(d.path / "out" / "default" / "results.json"), stamp);
+  const nlohmann::json again = nlohmann::json::parse(test::read(d.path / "out" / "convergence.json"));
+  ASSERT_EQ(again["runs"].size(), j["runs"].size());
+  for (size_t i = 0; i < j["runs"].size(); ++i) EXPECT_EQ(again["runs"][i]["capacity"], j["runs"][i]["capacity"]) << i;
+  // --read-back runs nothing and writes the same study.
+  EXPECT_EQ(test::run(base + " --read-back 2>/dev/null"), 0);
+  EXPECT_EQ(std::filesystem::last_write_time(d.path / "out" / "default" / "results.json"), stamp);
+  const nlohmann::json read = nlohmann::json::parse(test::read(d.path / "out" / "convergence.json"));
+  for (size_t i = 0; i < j["runs"].size(); ++i)
+    for (const char* key : {"name", "stopped", "capacity", "cycles"}) EXPECT_EQ(read["runs"][i][key], again["runs"][i][key]) << i << " " << key;
+  // An unknown variant, or one never run, is refused with the name and the file.
+  const std::string bad = d.path.string() + "/bad.txt";
+  EXPECT_EQ(test::run(base + " --only dampin 2>" + bad), 2);
+  EXPECT_NE(test::read(bad).find("no variant 'dampin'"), std::string::npos) << test::read(bad);
+  EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --convergence --quiet --only damping --out " +
+                      (d.path / "empty").string() + " 2>" + bad),
+            2);
+  EXPECT_NE(test::read(bad).find("default/results.json is missing"), std::string::npos) << test::read(bad);
 }
 
 }  // namespace
