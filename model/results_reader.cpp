@@ -124,6 +124,12 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
         if (!known.count(it.key())) s.extra[it.key()] = it.value();
       r.steps.push_back(std::move(s));
     }
+    // What a solver added beside the common fields (the DEM's collapse_bracket, wall_s, ...)
+    // comes back as it was written, as the steps' own extras do.
+    static const std::set<std::string> common{"format", "units",  "method", "case",     "capacity", "stable_steps", "collapsed", "stopped",
+                                              "message", "total_weight", "settings", "timing", "blocks", "joints", "steps", "sliding"};
+    for (auto it = j.begin(); it != j.end(); ++it)
+      if (!common.count(it.key())) r.extra[it.key()] = it.value();
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw fail(std::string("malformed results: ") + e.what());

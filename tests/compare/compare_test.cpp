@@ -143,6 +143,13 @@ TEST(Compare, ResultsJsonReadsBackToTheSameRun) {
   EXPECT_EQ(k.capacity_rel_diff, 0.0);
   EXPECT_EQ(k.thrust_max_diff, 0.0);
   for (const HingeCheck& h : k.hinges) EXPECT_TRUE(h.match);
+  // What a solver adds beside the common fields comes back too (a convergence study read back
+  // from disk reports the DEM's collapse bracket).
+  RunResult with = r;
+  with.extra["collapse_bracket"] = {{"width", 8e-5}, {"trials", nlohmann::ordered_json::array()}};
+  const RunResult back2 = parse_results(to_json(with, arch()).dump(1), arch(), "results.json");
+  ASSERT_TRUE(back2.extra.contains("collapse_bracket"));
+  EXPECT_EQ(back2.extra["collapse_bracket"]["width"].get<double>(), 8e-5);
 }
 
 TEST(Compare, ResultsOfAnotherCaseAreRefused) {
