@@ -7,12 +7,16 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "app/command.hpp"
 #include "app/flags.hpp"
 #include "cases/generators.hpp"
 #include "compare/compare.hpp"
 #include "compare/report.hpp"
+#include "model/io.hpp"
 #include "runs/run.hpp"
 
 namespace masonry {
@@ -20,7 +24,7 @@ namespace masonry {
 namespace {
 
 struct CompareOpts {
-  std::string case_path, out_dir, tolerances;
+  std::string case_path, out_dir, tolerances, notes;
   std::vector<double> frictions;
   std::vector<std::string> runs;  // existing result directories instead of running
   CaseFlags settings;               // the flags that set case options, for both methods
@@ -42,6 +46,7 @@ std::string command_line(const CompareOpts& o, const std::string& case_shown) {
   s += o.settings.command_line();
   if (o.dem_step) s += " --dem-step " + num_text(*o.dem_step);
   if (!o.tolerances.empty()) s += " --tolerances " + o.tolerances;
+  if (!o.notes.empty()) s += " --notes " + o.notes;
   if (!o.runs.empty()) {
     s += " --runs";
     for (const std::string& r : o.runs) s += " " + r;
@@ -50,6 +55,27 @@ std::string command_line(const CompareOpts& o, const std::string& case_shown) {
 }
 
 std::string dem_label(double phi) { return "DEM phi=" + num_text(phi); }
+
+// The author's notes for the report: plain text, paragraphs separated by blank lines (the lines
+// of a paragraph are joined with spaces).
+std::vector<std::string> read_notes(const std::string& path) {
+  const std::optional<std::string> text = read_text(path);
+  if (!text) throw std::runtime_error(path + ": cannot read the notes file (--notes)");
+  std::vector<std::string> paragraphs;
+  std::string para;
+  std::istringstream in(*text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) {
+      if (!para.empty()) paragraphs.push_back(std::move(para));
+      para.clear();
+    } else {
+      para += (para.empty() ? "" : " ") + line;
+    }
+  }
+  if (!para.empty()) paragraphs.push_back(std::move(para));
+  return paragraphs;
+}
 
 void progress(bool quiet, const std::string& line) {
   if (!quiet) std::cerr << line << std::flush;
@@ -120,6 +146,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
   Report rep = make_report(c, runs, tol ? &*tol : nullptr);
   rep.command = command_line(o, case_shown);
   rep.frames = o.frames;
+  if (!o.notes.empty()) rep.notes = read_notes(o.notes);
   write_report(o.out_dir, rep);
   bool failed = false, errored = false;
   for (const RunResult& r : results) errored = errored || !located(r.status);
@@ -147,12 +174,15 @@ void add_common_options(CLI::App* sub, CompareOpts& o) {
   o.settings.add(sub, "--move-time", "dem.move_time", K::number, "DEM: model time to travel one increment at constant speed, s (0: the servo)");
   o.settings.add(sub, "--damping", "dem.damping", K::number, "DEM: local damping coefficient in [0, 1)");
   o.settings.add(sub, "--kinetic-ratio", "dem.kinetic_ratio", K::number,
-                 "DEM: the loading's kinetic energy limit over total weight x increment (dem/README.md, \"The loading rate\")");
+                 "DEM: every block's kinetic energy limit while the supports move, over its weight x support travel (dem/README.md, \"The loading rate\")");
   o.settings.add(sub, "--hold", "prd.hold_closed", K::texts,
                  "PRD: keep this joint corner closed over the whole run (BLOCK/BLOCK:A; repeatable), to follow a second mechanism "
                  "(dem/README.md, \"Branches\")");
   sub->add_option("--frames", o.frames, "Slider positions in report.html (default 60, 24 for scenes over 60 blocks)")->check(CLI::NonNegativeNumber);
   sub->add_option("--tolerances", o.tolerances, "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true}: exit code 1 when one is exceeded");
+  sub->add_option("--notes", o.notes,
+                  "Plain-text file of the author's notes on the result (paragraphs separated by blank lines), shown after the "
+                  "tolerance checks, e.g. the mechanical reason a check fails");
   sub->add_flag("--quiet", o.quiet, "No progress lines");
 }
 

@@ -352,6 +352,10 @@ Document report_document(const Report& r, const std::vector<Figure>& figures, in
   }
   d.table(headline(r));
   tolerance_section(d, r);
+  if (!r.notes.empty()) {
+    d.heading(2, {"Notes"});
+    for (const std::string& p : r.notes) d.paragraph({p});
+  }
   d.heading(2, {"Capacities"});
   if (const Figure* f = find_figure(figures, "figures/capacity.svg")) d.figure(f->file, f->caption, f->svg);
   if (page) d.raw_html(slider_html(r, frames));

@@ -26,6 +26,7 @@ struct Report {
   std::vector<std::vector<std::string>> violations;  // per comparison
   std::string command;  // how the report was made (shown verbatim, escaped)
   int frames = 0;       // slider positions in report.html (0: chosen from the scene size)
+  std::vector<std::string> notes;  // the author's paragraphs on the result (plain text), after the checks
 };
 
 // Builds the comparisons (and, with `t`, the tolerance checks) of runs[0] against the others.

@@ -23,14 +23,16 @@ declare -A extra=(
   [cathedral-settlement-rotation]=""
 )
 failed=()
+# A report's notes.txt, where there is one, says in mechanical terms why a check fails.
+notes() { [ -f "$1/notes.txt" ] && echo "--notes $1/notes.txt"; }
 for name in pointed-arch cathedral-settlement cathedral-settlement-rotation; do
   out=reports/compare-$name
   if [ $render = 1 ]; then
     # shellcheck disable=SC2086
-    "$masonry" compare cases/$name.json --out "$out" --runs "$out/prd" "$out/dem" --tolerances $tolerances --quiet || failed+=("$name")
+    "$masonry" compare cases/$name.json --out "$out" --runs "$out/prd" "$out/dem" --tolerances $tolerances $(notes "$out") --quiet || failed+=("$name")
   else
     # shellcheck disable=SC2086
-    "$masonry" compare cases/$name.json --out "$out" --friction 35 ${extra[$name]} --tolerances $tolerances || failed+=("$name")
+    "$masonry" compare cases/$name.json --out "$out" --friction 35 ${extra[$name]} --tolerances $tolerances $(notes "$out") || failed+=("$name")
   fi
 done
 # The settlement cathedral's second mechanism (dem/README.md, "Branches"): the DEM at its defaults
@@ -39,9 +41,9 @@ done
 # reported, not required.
 out=reports/compare-cathedral-settlement-second-mechanism
 if [ $render = 1 ]; then
-  "$masonry" compare cases/cathedral-settlement.json --out "$out" --runs "$out/prd" "$out/dem" --tolerances $tolerances --quiet
+  "$masonry" compare cases/cathedral-settlement.json --out "$out" --runs "$out/prd" "$out/dem" --tolerances $tolerances $(notes "$out") --quiet
 else
-  "$masonry" compare cases/cathedral-settlement.json --out "$out" --friction 35 --hold nave-41/R-pier-30:A --tolerances $tolerances
+  "$masonry" compare cases/cathedral-settlement.json --out "$out" --friction 35 --hold nave-41/R-pier-30:A --tolerances $tolerances $(notes "$out")
 fi
 if [ ${#failed[@]} -gt 0 ]; then
   echo "regenerate: limits exceeded (or a run failed) for: ${failed[*]} (see their report.md)" >&2

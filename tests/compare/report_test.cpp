@@ -52,6 +52,24 @@ TEST(CompareCommand, ToleranceGateSetsTheExitCode) {
   const auto sj = nlohmann::json::parse(read(d / "same" / "comparison.json"));
   EXPECT_TRUE(sj["comparisons"][0]["tolerances"]["pass"].get<bool>());
   EXPECT_EQ(sj["comparisons"][0]["thrust"]["max_difference"].get<double>(), 0.0);
+  // The author's notes (why a check fails) come after the checks in both media, one paragraph
+  // per blank-line-separated block, escaped as any text; a notes file that is not there is
+  // refused with its name.
+  write(d / "notes.txt", "The DEM takes another mechanism:\nnave-24/25 opens <first>.\n\n  \nSecond paragraph.\n");
+  EXPECT_NE(run(base + " --runs " + (d / "a").string() + " " + (d / "b").string() + " --notes " + (d / "notes.txt").string() + " --out " +
+                (d / "noted").string() + " 2>/dev/null"),
+            0);
+  const std::string noted = read(d / "noted" / "report.md");
+  const size_t checks = noted.find("## Tolerance checks"), notes = noted.find("## Notes"), caps = noted.find("## Capacities");
+  ASSERT_NE(notes, std::string::npos) << noted;
+  EXPECT_LT(checks, notes);
+  EXPECT_LT(notes, caps);
+  EXPECT_NE(noted.find("The DEM takes another mechanism: nave-24/25 opens &lt;first&gt;.\n\nSecond paragraph."), std::string::npos) << noted;
+  EXPECT_NE(read(d / "noted" / "report.html").find("nave-24/25 opens &lt;first&gt;."), std::string::npos);
+  EXPECT_EQ(run(base + " --runs " + (d / "a").string() + " " + (d / "b").string() + " --notes " + (d / "missing.txt").string() + " --out " +
+                (d / "nonotes").string() + " 2>" + (d / "err.txt").string()),
+            2);
+  EXPECT_NE(read(d / "err.txt").find("missing.txt: cannot read the notes file"), std::string::npos) << read(d / "err.txt");
   fs::remove_all(d);
 }
 
