@@ -84,6 +84,22 @@ TEST(DemHold, CreepTowardsEquilibriumIsNotCollapse) {
   }
 }
 
+// A collapse slower than the cap is a collapse: a block on a slope one degree steeper than its
+// friction angle, heavily damped, slides at 0.04 m/s^2 (a fifth of g (sin 36 - cos 36 tan 35));
+// with a cap of 1 s it has gone 2 cm, less than the collapse drift (5 cm), and the kinetic-energy
+// rule is off, but it went farther in the second half-second than in the first: collapse, not
+// undecided. (The creeping block above never goes a tenth of the collapse drift.)
+TEST(DemHold, ACollapseSlowerThanTheCapIsACollapse) {
+  const Case c = incline_case(36 * kDeg, 35);
+  DemSettings s = DemSettings::from_case(c);
+  s.hold_time = 1.0;
+  DemModel m(c, s);
+  const dem::HoldOutcome h = dem::hold(m, c, s, limits(0.05, INFINITY));
+  EXPECT_EQ(h.end, dem::HoldEnd::collapse) << dem::hold_end_name(h.end) << ", drift " << h.drift << " m";
+  EXPECT_LT(h.drift, 0.05);
+  EXPECT_NEAR(h.time, s.hold_time, 1e-3);
+}
+
 // A run whose first settling cannot finish within the cap says so: undecided, no capacity.
 TEST(DemHold, UndecidedInitialStateIsNoCapacity) {
   Case c = incline_case(0.0, 35);
