@@ -52,7 +52,6 @@ struct Run {
   // The servo's target, m per m of d: the kinetic energy a block may carry during a move, over its
   // own weight (kinetic_ratio x support travel).
   double ke_height_per_d = 0;
-  double ke_per_d = 0;  // J per m of d: the same for the whole structure, the hold's runaway scale
   double bracket = 0;   // m: the collapse bracket's width
   // Corner gaps of the settled initial configuration: hinges are measured from them.
   std::vector<double> settled_gaps;
@@ -160,7 +159,8 @@ void settled_at(Run& u, const Attempt& a, double d, bool bracketing) {
 Attempt attempt(Run& u, double d0, double d1, long long watch = 0) {
   Attempt a;
   const long long c0 = u.m.cycles();
-  u.lim.ke_collapse = 10 * u.ke_per_d * (d1 - d0);
+  // The hold's runaway scale, J: the same target for the whole structure's kinetic energy.
+  u.lim.ke_collapse = 10 * (u.ke_height_per_d * u.r.total_weight) * (d1 - d0);
   u.lim.move_drift = u.lim.collapse_drift + support_travel_per_d(u.c) * (d1 - d0);
   const std::vector<Vec2> before = dem::positions(u.m, u.c);
   const dem::MoveOutcome mv = dem::move(u.m, u.c, u.s, d0, d1, u.ke_height_per_d * (d1 - d0), u.speed / 4, u.lim);
@@ -305,7 +305,6 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   u.lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
   u.lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
   u.ke_height_per_d = s.kinetic_ratio * support_travel_per_d(c);
-  u.ke_per_d = u.ke_height_per_d * r.total_weight;
   u.bracket = s.bracket_fraction * s.step;
   record_settings(u);
   try {
