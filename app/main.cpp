@@ -33,7 +33,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the message (or the help, exit 0); a usage error is a refusal like any other
+    // bad input (command.hpp), not CLI11's own codes (105-109).
+    return app.exit(e) == 0 ? masonry::kExitDone : masonry::kExitRefused;
   }
   for (const masonry::Command& c : commands) {
     if (!c.app->parsed()) continue;

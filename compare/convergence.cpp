@@ -39,6 +39,8 @@ ojson parting_json(const std::optional<Parting>& p) {
 
 }  // namespace
 
+const char* study_name(Study s) { return s == Study::stiffness ? "stiffness" : "convergence"; }
+
 ConvergenceVerdict judge(const Convergence& c) {
   ConvergenceVerdict v;
   if (c.entries.empty()) {
@@ -59,6 +61,10 @@ ConvergenceVerdict judge(const Convergence& c) {
   const double base = c.entries.front().run.capacity;
   if (v.complete && base > 0) v.spread = (hi - lo) / base;
   if (c.prd_capacity && *c.prd_capacity > 0 && located(c.entries.front().run.status)) v.prd_error = (base - *c.prd_capacity) / *c.prd_capacity;
+  if (c.study == Study::stiffness) {
+    v.ok = v.complete;
+    return v;
+  }
   if (v.complete && !(v.spread <= c.spread_limit))
     v.problems.push_back("the capacities spread by " + fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) + " of the default's, more than " +
                          fmt::g(100 * c.spread_limit) + "%");
@@ -72,6 +78,7 @@ ojson convergence_json(const Convergence& c) {
   const ConvergenceVerdict v = judge(c);
   ojson j;
   j["format"] = "masonry-dem-convergence/1";
+  j["study"] = study_name(c.study);
   j["units"] = "m for capacities and d, s for times";
   j["case"] = c.case_name;
   j["prd_capacity"] = c.prd_capacity ? ojson(*c.prd_capacity) : ojson(nullptr);
@@ -95,23 +102,38 @@ ojson convergence_json(const Convergence& c) {
     r["cpu_s"] = e.run.timing.total_s;
     r["cycles"] = e.run.timing.cycles;
     r["message"] = e.run.message;
-    if (c.scene && &e != &c.entries.front()) r["parts_from_default"] = parting_json(parting(c, e.run, c.entries.front().run));
+    r["kn"] = e.run.settings.contains("kn") ? e.run.settings["kn"] : ojson(nullptr);
+    if (c.scene && c.study == Study::stiffness && c.prd) r["parts_from_prd"] = parting_json(parting(c, e.run, *c.prd));
+    else if (c.scene && &e != &c.entries.front()) r["parts_from_default"] = parting_json(parting(c, e.run, c.entries.front().run));
     runs.push_back(r);
   }
   j["runs"] = runs;
-  if (c.scene && c.prd && !c.entries.empty()) j["default_parts_from_prd"] = parting_json(parting(c, c.entries.front().run, *c.prd));
+  if (c.scene && c.prd && !c.entries.empty() && c.study == Study::convergence) j["default_parts_from_prd"] = parting_json(parting(c, c.entries.front().run, *c.prd));
   return j;
 }
 
 std::string convergence_markdown(const Convergence& c) {
   const ConvergenceVerdict v = judge(c);
+  const bool stiffness = c.study == Study::stiffness;
   Document d;
-  d.title = "DEM convergence: " + c.case_name;
-  d.paragraph({"The same case at the default DEM settings and at settings that must not change a quasi-static answer. "
-               "Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
+  if (stiffness) {
+    d.title = "DEM joint stiffness: " + c.case_name;
+    d.paragraph({"The same case with the joints' normal and shear stiffness (kn, ks) scaled together, every other setting at the default. "
+                 "PRD's blocks are rigid, the limit of stiffening joints, and the elastic gaps and settling shrink as 1/kn: a difference "
+                 "from PRD that shrinks as the joints stiffen is elastic, not the protocol's. Stiffness belongs to the structure, so "
+                 "this is a measurement, with no limits. Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
+  } else {
+    d.title = "DEM convergence: " + c.case_name;
+    d.paragraph({"The same case at the default DEM settings and at settings that must not change a quasi-static answer. "
+                 "Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
+  }
   Table t;
   t.head = {"run", "what differs", "stopped", "capacity (m)", "against default", "against PRD", "bracket (mm)", "CPU (s)", "cycles"};
   t.align = {Align::left, Align::left, Align::left, Align::right, Align::right, Align::right, Align::right, Align::right, Align::right};
+  if (stiffness) {
+    t.head.insert(t.head.begin() + 2, "kn (Pa/m)");
+    t.align.insert(t.align.begin() + 2, Align::right);
+  }
   const double base = c.entries.empty() ? NAN : c.entries.front().run.capacity;
   for (const ConvergenceEntry& e : c.entries) {
     const bool ok = located(e.run.status);
@@ -120,12 +142,17 @@ std::string convergence_markdown(const Convergence& c) {
                       ok && base > 0 ? pct((e.run.capacity - base) / base) : "n/a",
                       ok && c.prd_capacity ? pct((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : "n/a", fmt::mm(width, 2),
                       fmt::number(e.run.timing.total_s, "%.1f", e.run.timing.total_s), std::to_string(e.run.timing.cycles)});
+    if (stiffness) {
+      const double kn = e.run.settings.value("kn", NAN);
+      t.rows.back().insert(t.rows.back().begin() + 2, fmt::number(kn, "%.3g", kn));
+    }
   }
   d.table(std::move(t));
   d.paragraph({"PRD capacity: " + (c.prd_capacity ? fmt::number(*c.prd_capacity, "%.4f m", *c.prd_capacity) : std::string("not run")) + "."});
-  d.paragraph({"Spread (largest minus smallest capacity, over the default's): " +
-               (std::isfinite(v.spread) ? fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) : std::string("n/a")) + " (limit " +
-               fmt::g(100 * c.spread_limit) + "%); default against PRD: " + pct(v.prd_error) + " (limit " + fmt::g(100 * c.prd_limit) + "%)."});
+  if (!stiffness)
+    d.paragraph({"Spread (largest minus smallest capacity, over the default's): " +
+                 (std::isfinite(v.spread) ? fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) : std::string("n/a")) + " (limit " +
+                 fmt::g(100 * c.spread_limit) + "%); default against PRD: " + pct(v.prd_error) + " (limit " + fmt::g(100 * c.prd_limit) + "%)."});
   if (c.scene && !c.entries.empty()) {
     d.paragraph({Cell("Where the mechanisms part", CellStyle::strong),
                  " (for good: joints open wider than " + fmt::g(1e3 * kOpenOfScene * scene_size(*c.scene), 3) +
@@ -138,11 +165,24 @@ std::string convergence_markdown(const Convergence& c) {
                                                "; only in " + other + ": " + joined(p->only_b))},
                        {}});
     };
-    if (c.prd) line("default", "PRD", c.entries.front().run, *c.prd);
-    for (size_t k = 1; k < c.entries.size(); ++k) line(c.entries[k].name, "the default", c.entries[k].run, c.entries.front().run);
+    if (stiffness) {
+      // Each stiffness against the rigid limit.
+      if (c.prd)
+        for (const ConvergenceEntry& e : c.entries) line(e.name, "PRD", e.run, *c.prd);
+    } else {
+      if (c.prd) line("default", "PRD", c.entries.front().run, *c.prd);
+      for (size_t k = 1; k < c.entries.size(); ++k) line(c.entries[k].name, "the default", c.entries[k].run, c.entries.front().run);
+    }
     d.list(std::move(items));
   }
-  if (v.ok) {
+  if (stiffness) {
+    if (!v.ok) {
+      d.paragraph({Cell("Incomplete", CellStyle::strong), ":"});
+      std::vector<Item> items;
+      for (const std::string& p : v.problems) items.push_back({{p}, {}});
+      d.list(std::move(items));
+    }
+  } else if (v.ok) {
     d.paragraph({Cell("Converged", CellStyle::strong), ": every run located its collapse and the capacities agree within the limits."});
   } else {
     d.paragraph({Cell("Not shown converged", CellStyle::strong), ":"});

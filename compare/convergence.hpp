@@ -13,12 +13,18 @@
 
 namespace masonry {
 
+// What a study's runs vary: settings that must not matter (a check: spread and PRD limits), or the
+// joints' stiffness (a measurement: each run against PRD, no limits; dem/variants.hpp).
+enum class Study { convergence, stiffness };
+const char* study_name(Study s);  // "convergence", "stiffness": the study's file names
+
 struct ConvergenceEntry {
   std::string name, what;  // the variant
   RunResult run;
 };
 
 struct Convergence {
+  Study study = Study::convergence;
   std::string case_name;
   std::vector<ConvergenceEntry> entries;  // the default first
   std::optional<double> prd_capacity;     // m
@@ -31,6 +37,7 @@ struct Convergence {
   double prd_limit = 0.03;                // |default - PRD| / PRD
 };
 
+// A stiffness study has no limits: ok when it is complete.
 struct ConvergenceVerdict {
   bool complete = false;   // every run ended in a located collapse or max_steps
   double spread = NAN;     // (max - min) / default over the runs, NaN when a run failed

@@ -24,23 +24,23 @@ namespace {
 struct Opts {
   std::string case_path, out_dir;
   CaseFlags settings;  // the flags that set case options
-  bool quiet = false, convergence = false;
+  bool quiet = false, convergence = false, stiffness_study = false;
   int jobs = 2;
   double spread_limit = 0.02, prd_limit = 0.03;
-  std::vector<std::string> only;  // convergence: the variants to run; the others are read back
-  bool read_back = false;         // convergence: read every run back, run none
+  std::vector<std::string> only;  // a study: the variants to run; the others are read back
+  bool read_back = false;         // a study: read every run back, run none
 };
 
-// The convergence study's runs: every variant, or with --only the named ones (none with
+// A study's runs: every variant, or with --only the named ones (none with
 // --read-back), the others read back from DIR/<variant>/results.json of an earlier study (a
 // finished run, or a refusal).
-std::vector<RunResult> convergence_runs(const Case& c, const std::vector<DemVariant>& variants, const Opts& o,
-                                        const std::function<void(size_t, const RunResult&)>& on_done) {
+std::vector<RunResult> study_runs(const Case& c, Study kind, const std::vector<DemVariant>& variants, const Opts& o,
+                                  const std::function<void(size_t, const RunResult&)>& on_done) {
   if (o.only.empty() && !o.read_back) return run_variants(c, variants, o.jobs, o.out_dir, on_done);
   std::vector<size_t> rerun;  // indices into variants
   for (const std::string& name : o.only) {
     const auto it = std::find_if(variants.begin(), variants.end(), [&](const DemVariant& v) { return v.name == name; });
-    if (it == variants.end()) throw std::invalid_argument("dem --only: no variant '" + name + "' in the convergence study");
+    if (it == variants.end()) throw std::invalid_argument("dem --only: no variant '" + name + "' in the " + study_name(kind) + " study");
     rerun.push_back(static_cast<size_t>(it - variants.begin()));
   }
   std::vector<RunResult> runs(variants.size());
@@ -51,9 +51,9 @@ std::vector<RunResult> convergence_runs(const Case& c, const std::vector<DemVari
       continue;
     }
     const std::string path = (std::filesystem::path(o.out_dir) / variants[i].name / "results.json").string();
-    if (!std::filesystem::exists(path)) throw std::invalid_argument("dem convergence: " + path + " is missing: run the whole study first");
+    if (!std::filesystem::exists(path)) throw std::invalid_argument(std::string("dem ") + study_name(kind) + ": " + path + " is missing: run the whole study first");
     runs[i] = load_results(path, c);
-    if (runs[i].status == RunStatus::running) throw std::invalid_argument("dem convergence: " + path + " is a run that did not finish");
+    if (runs[i].status == RunStatus::running) throw std::invalid_argument(std::string("dem ") + study_name(kind) + ": " + path + " is a run that did not finish");
   }
   // to_run is in variants' order, and so is rerun once sorted.
   std::sort(rerun.begin(), rerun.end());
@@ -64,30 +64,33 @@ std::vector<RunResult> convergence_runs(const Case& c, const std::vector<DemVari
   return runs;
 }
 
-// The convergence study: PRD once for reference, the DEM variants in parallel, each written to
-// DIR/<variant>/ as it goes, then the verdict.
-int run_convergence(const Case& c, const DemSettings& base, const Opts& o) {
+// A study (convergence or joint stiffness): PRD once for reference, the DEM variants in
+// parallel, each written to DIR/<variant>/ as it goes, then DIR/<study>.{json,md} and the verdict.
+int run_study(const Case& c, const DemSettings& base, Study kind, const Opts& o) {
   Convergence study;
+  study.study = kind;
   study.case_name = c.name;
   study.spread_limit = o.spread_limit;
   study.prd_limit = o.prd_limit;
   study.scene = &c;
   study.prd = run_case(c, Method::prd);
   if (located(study.prd->status)) study.prd_capacity = study.prd->capacity;
-  const std::vector<DemVariant> variants = convergence_variants(base);
+  const std::vector<DemVariant> variants = kind == Study::stiffness ? stiffness_variants(base) : convergence_variants(base);
+  const std::string name = study_name(kind);
   std::mutex io;
-  const std::vector<RunResult> runs = convergence_runs(c, variants, o, [&](size_t i, const RunResult& r) {
+  const std::vector<RunResult> runs = study_runs(c, kind, variants, o, [&](size_t i, const RunResult& r) {
     if (o.quiet) return;
     std::lock_guard<std::mutex> lock(io);
-    std::fprintf(stderr, "dem convergence: %-15s %s, capacity %.6g m, %.3g s CPU\n", variants[i].name.c_str(), status_name(r.status),
+    std::fprintf(stderr, "dem %s: %-15s %s, capacity %.6g m, %.3g s CPU\n", name.c_str(), variants[i].name.c_str(), status_name(r.status),
                  r.capacity, r.timing.total_s);
   });
   for (size_t i = 0; i < variants.size(); ++i) study.entries.push_back({variants[i].name, variants[i].what, runs[i]});
-  write_file_atomic((std::filesystem::path(o.out_dir) / "convergence.json").string(), convergence_json(study).dump(1) + "\n");
-  const std::string md = convergence_markdown(study);
-  write_file_atomic((std::filesystem::path(o.out_dir) / "convergence.md").string(), md);
+  const std::filesystem::path out(o.out_dir);
+  write_file_atomic((out / (name + ".json")).string(), convergence_json(study).dump(1) + "\n");
+  write_file_atomic((out / (name + ".md")).string(), convergence_markdown(study));
   const ConvergenceVerdict v = judge(study);
-  if (!o.quiet) std::fprintf(stderr, "dem convergence: %s (%s)\n", v.ok ? "converged" : "NOT shown converged", (std::filesystem::path(o.out_dir) / "convergence.md").c_str());
+  const char* verdict = kind == Study::stiffness ? (v.ok ? "complete" : "incomplete") : (v.ok ? "converged" : "NOT shown converged");
+  if (!o.quiet) std::fprintf(stderr, "dem %s: %s (%s)\n", name.c_str(), verdict, (out / (name + ".md")).c_str());
   return v.ok ? kExitDone : kExitFailed;
 }
 
@@ -137,19 +140,24 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   sub->add_flag("--convergence", o->convergence,
                 "Convergence study: the run at these settings and at settings that must not matter (dem/README.md), "
                 "DIR/convergence.{json,md}, each run in DIR/<variant>/; exit code 1 when the spread or the default against PRD exceeds its limit");
-  sub->add_option("--jobs", o->jobs, "Convergence study: runs at a time, one thread each (default 2)")->check(CLI::PositiveNumber);
+  sub->add_flag("--stiffness-study", o->stiffness_study,
+                "Joint-stiffness study: the run at these settings and with kn, ks x1/10, x1/3, x3, x10, x30 (dem/README.md), "
+                "DIR/stiffness.{json,md}, each run in DIR/<variant>/, each run's mechanism against PRD's; a measurement with no "
+                "limits: exit code 1 only when a run does not finish")->excludes("--convergence");
+  sub->add_option("--jobs", o->jobs, "A study: runs at a time, one thread each (default 2)")->check(CLI::PositiveNumber);
   sub->add_option("--spread-limit", o->spread_limit, "Convergence study: largest (max - min) / default capacity (default 0.02)");
   sub->add_option("--prd-limit", o->prd_limit, "Convergence study: largest |default - PRD| / PRD capacity (default 0.03)");
   sub->add_option("--only", o->only,
-                  "Convergence study: run only these variants again and read the others back from DIR/<variant>/results.json "
+                  "A study: run only these variants again and read the others back from DIR/<variant>/results.json "
                   "(of a study run with the same binary and settings: the results do not say which code made them)");
   sub->add_flag("--read-back", o->read_back,
-                "Convergence study: run no variant, read them all back from DIR/<variant>/results.json and write the study again");
+                "A study: run no variant, read them all back from DIR/<variant>/results.json and write the study again");
   out.push_back({sub, [o]() {
                    const Case c = o->settings.apply(load_case(o->case_path));
                    const DemSettings s = DemSettings::from_case(c);
                    if (!o->quiet) warn_dem_cost(c, s);
-                   if (o->convergence) return run_convergence(c, s, *o);
+                   if (o->convergence) return run_study(c, s, Study::convergence, *o);
+                   if (o->stiffness_study) return run_study(c, s, Study::stiffness, *o);
                    const RunResult r = run_dem(c, s, {o->out_dir, [&](const RunResult& part) {
                      if (o->quiet || part.steps.empty()) return;
                      const StepRecord& st = part.steps.back();

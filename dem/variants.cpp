@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace masonry {
 
@@ -52,6 +53,21 @@ std::vector<DemVariant> convergence_variants(const DemSettings& base) {
     fr.settings.friction_angle = std::min(90.0, base.friction_angle + 10);
     fr.what = "friction angle " + num(fr.settings.friction_angle) + " deg";
     v.push_back(fr);
+  }
+  return v;
+}
+
+std::vector<DemVariant> stiffness_variants(const DemSettings& base) {
+  std::vector<DemVariant> v;
+  v.push_back({"default", "the case's joints", base});
+  // (name, factor on kn and ks), softest first after the default.
+  const std::pair<const char*, double> scales[] = {{"softer-x10", 0.1}, {"softer-x3", 1.0 / 3}, {"stiffer-x3", 3.0},
+                                                   {"stiffer-x10", 10.0}, {"stiffer-x30", 30.0}};
+  for (const auto& [name, factor] : scales) {
+    DemVariant k{name, "", base};
+    k.settings.stiffness_reduction = base.stiffness_reduction / factor;
+    k.what = factor < 1 ? "joints x" + num(std::round(1 / factor)) + " softer" : "joints x" + num(factor) + " stiffer";
+    v.push_back(k);
   }
   return v;
 }

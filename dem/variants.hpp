@@ -20,4 +20,11 @@ struct DemVariant {
 // The default first, then one variation per setting that must not matter.
 std::vector<DemVariant> convergence_variants(const DemSettings& base);
 
+// The joint-stiffness study: the default first, then the joints (kn and ks together) 10 and 3
+// times softer and 3, 10 and 30 times stiffer. PRD's blocks are rigid, the limit of stiffening
+// joints; the elastic gaps and the elastic settling shrink as 1/kn. So this measures whether a
+// difference from PRD is elastic (it shrinks as the joints stiffen), not whether the protocol
+// converged: stiffness is a property of the structure, not a setting that must not matter.
+std::vector<DemVariant> stiffness_variants(const DemSettings& base);
+
 }  // namespace masonry

@@ -114,4 +114,14 @@ TEST(DemCli, AFlagIsTheCaseOptionItSets) {
   EXPECT_EQ(j["settings"]["max_steps"].get<int>(), 1);
 }
 
+// Usage errors (an unknown option, options that exclude each other) are refusals like any bad
+// input: exit code 2 with CLI11's message, not CLI11's own codes.
+TEST(DemCli, AUsageErrorExitsTwo) {
+  Dir d;
+  const fs::path c = write_arch(d), err = d.path / "err.txt";
+  EXPECT_EQ(run(c.string() + " --out " + (d.path / "a").string() + " --no-such-option", err), 2) << slurp(err);
+  EXPECT_EQ(run(c.string() + " --out " + (d.path / "b").string() + " --convergence --stiffness-study", err), 2) << slurp(err);
+  EXPECT_NE(slurp(err).find("excludes"), std::string::npos) << slurp(err);
+}
+
 }  // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "common.hpp"
 #include "compare/convergence.hpp"
@@ -373,6 +374,50 @@ TEST(DemConvergence, CommandWritesTheStudy) {
                       (d.path / "empty").string() + " 2>" + bad),
             2);
   EXPECT_NE(test::read(bad).find("default/results.json is missing"), std::string::npos) << test::read(bad);
+}
+
+// `masonry dem --stiffness-study` on the tilting block (b = 0.2 m, h = 0.4 m): the joints scaled
+// by the factors the study names, and the toppling tilt rising to the rigid block's closed form
+// atan(b/h) as the joints stiffen. A soft joint lets the block sink into its toe as it leans, which
+// moves its weight outwards and topples it earlier; PRD's rigid block is the limit.
+TEST(DemStiffnessStudy, TheTopplingTiltTendsToTheRigidBlocksAsTheJointsStiffen) {
+  test::Scratch d("dem-stiffness");
+  const std::string out = (d.path / "out").string();
+  ASSERT_EQ(test::run(std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --stiffness-study --jobs 2 --quiet --out " +
+                      out + " 2>/dev/null"),
+            0);
+  const nlohmann::json j = nlohmann::json::parse(test::read(d.path / "out" / "stiffness.json"));
+  EXPECT_EQ(j["study"], "stiffness");
+  EXPECT_TRUE(j["ok"].get<bool>()) << j.dump(1);
+  const std::map<std::string, double> factor{{"default", 1.0},     {"softer-x10", 0.1},   {"softer-x3", 1.0 / 3},
+                                             {"stiffer-x3", 3.0}, {"stiffer-x10", 10.0}, {"stiffer-x30", 30.0}};
+  ASSERT_EQ(j["runs"].size(), factor.size());
+  ASSERT_EQ(j["runs"][0]["name"], "default");
+  const double kn0 = j["runs"][0]["kn"].get<double>();
+  std::vector<std::pair<double, double>> by_kn;  // (kn, capacity)
+  double width = 0;
+  for (const auto& r : j["runs"]) {
+    const std::string name = r["name"];
+    ASSERT_TRUE(factor.count(name)) << name;
+    ASSERT_EQ(r["stopped"], "collapse") << name;
+    EXPECT_NEAR(r["kn"].get<double>() / kn0, factor.at(name), 1e-12 * factor.at(name)) << name;
+    EXPECT_TRUE(r["parts_from_prd"].is_null()) << name << ": the block topples as PRD's does: " << r["parts_from_prd"].dump();
+    by_kn.emplace_back(r["kn"].get<double>(), r["capacity"].get<double>());
+    width = std::max(width, r["bracket_width"].get<double>());
+  }
+  std::sort(by_kn.begin(), by_kn.end());
+  const double rigid = std::atan(0.2 / 0.4);
+  for (size_t k = 0; k < by_kn.size(); ++k) {
+    EXPECT_LE(by_kn[k].second, rigid + width) << "kn " << by_kn[k].first;
+    if (k > 0) {
+      EXPECT_GE(by_kn[k].second, by_kn[k - 1].second - width) << "kn " << by_kn[k].first;
+    }
+  }
+  EXPECT_NEAR(by_kn.back().second, rigid, 2 * width);
+  EXPECT_GT(rigid - by_kn.front().second, 5 * width) << "the softest joints topple visibly earlier";
+  const std::string md = test::read(d.path / "out" / "stiffness.md");
+  EXPECT_NE(md.find("DEM joint stiffness"), std::string::npos);
+  EXPECT_EQ(md.find("Converged"), std::string::npos);
 }
 
 }  // namespace
