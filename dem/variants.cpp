@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <utility>
+#include <string>
 
 namespace masonry {
 
@@ -60,14 +60,18 @@ std::vector<DemVariant> convergence_variants(const DemSettings& base) {
 std::vector<DemVariant> stiffness_variants(const DemSettings& base) {
   std::vector<DemVariant> v;
   v.push_back({"default", "the case's joints", base});
-  // (name, factor on kn and ks), softest first after the default.
-  const std::pair<const char*, double> scales[] = {{"softer-x10", 0.1}, {"softer-x3", 1.0 / 3}, {"stiffer-x3", 3.0},
-                                                   {"stiffer-x10", 10.0}, {"stiffer-x30", 30.0}};
-  for (const auto& [name, factor] : scales) {
-    DemVariant k{name, "", base};
-    k.settings.stiffness_reduction = base.stiffness_reduction / factor;
-    k.what = factor < 1 ? "joints x" + num(std::round(1 / factor)) + " softer" : "joints x" + num(factor) + " stiffer";
-    v.push_back(k);
+  // (name, how many times softer or stiffer), softest first after the default. The reduction is
+  // multiplied or divided by a whole number, so x3 is exactly the convergence study's x3.
+  struct Scale {
+    const char* name;
+    int times;
+    bool stiffer;
+  };
+  for (const Scale& k : {Scale{"softer-x10", 10, false}, Scale{"softer-x3", 3, false}, Scale{"stiffer-x3", 3, true},
+                         Scale{"stiffer-x10", 10, true}, Scale{"stiffer-x30", 30, true}}) {
+    DemVariant var{k.name, "joints x" + std::to_string(k.times) + (k.stiffer ? " stiffer" : " softer"), base};
+    var.settings.stiffness_reduction = k.stiffer ? base.stiffness_reduction / k.times : base.stiffness_reduction * k.times;
+    v.push_back(var);
   }
   return v;
 }
