@@ -171,6 +171,9 @@ std::optional<Parting> hinges_part(const Case& c, const RunResult& a, const RunR
   int apart = 0;  // records since p
   for (const StepRecord* s : ra) {
     if (s->d > end) break;
+    // The settled state is not a mechanism: a DEM records its absolute elastic gaps there
+    // (dem.hpp, DemModel::record), the increments their growth beyond them.
+    if (s->index == 0) continue;
     const StepRecord* t = record_at(rb, s->d);
     const auto x = wide_open(c, a, *s, min_gap), y = wide_open(c, b, *t, min_gap);
     if (x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin(), [](const auto& u, const auto& v) { return u.first == v.first; })) {
@@ -178,7 +181,15 @@ std::optional<Parting> hinges_part(const Case& c, const RunResult& a, const RunR
       apart = 0;
       continue;
     }
-    if (!p) p = Parting{s->d, only_in(x, y), only_in(y, x)};
+    if (!p) {
+      p.emplace();
+      p->d = s->d;
+      p->only_a = only_in(x, y);
+      p->only_b = only_in(y, x);
+    }
+    p->end_d = s->d;
+    p->end_only_a = only_in(x, y);
+    p->end_only_b = only_in(y, x);
     ++apart;
   }
   // A difference at the last record alone is the approach to collapse seen at slightly

@@ -106,9 +106,14 @@ std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord
 // before the same d) at every record up to the end of the common range. An early difference
 // that closes again (a hinge that opens one increment later in one run) is not a parting, and
 // neither is one at the last record alone (the approach to collapse at slightly different d).
+// The settled state (step 0) is not compared: a mechanism is what the support motion opens.
 struct Parting {
   double d = 0.0;                           // m
   std::vector<std::string> only_a, only_b;  // "blocks:corner (gap mm)", block ids unescaped
+  // The same at the last record compared (the end of the common range): the mechanisms as they
+  // stand at collapse, where the first difference may be a joint that later closes.
+  double end_d = 0.0;
+  std::vector<std::string> end_only_a, end_only_b;
 };
 std::optional<Parting> hinges_part(const Case& c, const RunResult& a, const RunResult& b, double min_gap);
 // d (m) where the set of open corners changes (see CompareOptions::min_state_records).

@@ -33,7 +33,10 @@ std::string joined(const std::vector<std::string>& v) {
 
 ojson parting_json(const std::optional<Parting>& p) {
   if (!p) return nullptr;
-  return {{"d", p->d}, {"only_this", p->only_a}, {"only_other", p->only_b}};
+  return {{"d", p->d},
+          {"only_this", p->only_a},
+          {"only_other", p->only_b},
+          {"at_end", {{"d", p->end_d}, {"only_this", p->end_only_a}, {"only_other", p->end_only_b}}}};
 }
 
 
@@ -162,7 +165,9 @@ std::string convergence_markdown(const Convergence& c) {
       const std::optional<Parting> p = parting(c, a, b);
       items.push_back({{who + ": " + (!p ? "the same open joints as " + other + " to the end of the common range"
                                          : "from d = " + fmt::number(p->d, "%.4f", p->d) + " m, open only here: " + joined(p->only_a) +
-                                               "; only in " + other + ": " + joined(p->only_b))},
+                                               "; only in " + other + ": " + joined(p->only_b) + ". At d = " +
+                                               fmt::number(p->end_d, "%.4f", p->end_d) + " m, the end of the common range, only here: " +
+                                               joined(p->end_only_a) + "; only in " + other + ": " + joined(p->end_only_b))},
                        {}});
     };
     if (stiffness) {

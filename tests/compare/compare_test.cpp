@@ -212,10 +212,22 @@ TEST(Compare, HingesPartWhereTheyDifferForGood) {
   ASSERT_EQ(p->only_b.size(), 1u);
   EXPECT_EQ(p->only_a[0].rfind(name(j2), 0), 0u) << p->only_a[0];
   EXPECT_EQ(p->only_b[0].rfind(name(j3), 0), 0u) << p->only_b[0];
+  // And as they stand at the end of the common range.
+  EXPECT_NEAR(p->end_d, 0.4, 1e-12);
+  ASSERT_EQ(p->end_only_a.size(), 1u);
+  EXPECT_EQ(p->end_only_a[0].rfind(name(j2), 0), 0u) << p->end_only_a[0];
+  ASSERT_EQ(p->end_only_b.size(), 1u);
   EXPECT_FALSE(hinges_part(arch(), a, a, 1e-4));      // a run does not part from itself
   EXPECT_FALSE(hinges_part(arch(), a, b, 5e-3));      // nothing open that wide
   // A difference at the last record alone is the approach to collapse, not a parting.
   EXPECT_FALSE(hinges_part(arch(), run({{}, {j1}, {j1, j2}}), run({{}, {j1}, {j1}}), 1e-4));
+  // The settled state (step 0) is no mechanism: a DEM's elastic settling gaps there, wide with
+  // soft joints, are not where the mechanisms part; the first increment's difference is.
+  const std::optional<Parting> q = hinges_part(arch(), run({{j3}, {j1, j2}, {j1, j2}, {j1, j2}}), run({{}, {j1}, {j1}, {j1}}), 1e-4);
+  ASSERT_TRUE(q);
+  EXPECT_NEAR(q->d, 0.1, 1e-12);
+  ASSERT_EQ(q->only_a.size(), 1u);
+  EXPECT_EQ(q->only_a[0].rfind(name(j2), 0), 0u) << q->only_a[0];
 }
 
 TEST(Compare, MissingNumbersAreNullNotNaN) {
