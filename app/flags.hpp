@@ -16,9 +16,9 @@ namespace masonry {
 
 class CaseFlags {
  public:
-  enum class Kind { number, integer, flag, texts };
-  // Adds `--name VALUE` (or the switch `--name`; for texts, repeatable, the values a list) to
-  // `sub`, setting case option `key`.
+  enum class Kind { number, integer, flag, text, texts };
+  // Adds `--name VALUE` (or the switch `--name`; for text, one word the case loader checks; for
+  // texts, repeatable, the values a list) to `sub`, setting case option `key`.
   void add(CLI::App* sub, const std::string& name, const std::string& key, Kind kind, const std::string& help);
   // The case with every given flag applied, in the order they were added. Throws CaseError.
   Case apply(Case c) const;
@@ -32,6 +32,7 @@ class CaseFlags {
     std::optional<double> number;
     std::optional<long long> integer;
     bool on = false;
+    std::optional<std::string> text;
     std::vector<std::string> texts;
   };
   std::deque<Flag> flags_;  // a deque: CLI11 keeps pointers to the values

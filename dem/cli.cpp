@@ -136,6 +136,9 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   f.add(sub, "--ramp-fraction", "dem.ramp_fraction", K::number, "Fraction of the move time spent speeding up (and slowing down), 0..0.5 (default 0.25; 0: abrupt)");
   f.add(sub, "--collapse-drift", "dem.collapse_drift", K::number, "Block travel within an unsettled hold that means collapse, m (default 2% of scene)");
   f.add(sub, "--open-gap", "dem.open_gap", K::number, "Gap growth above which a joint corner is open, m (default prd.contact_tolerance)");
+  f.add(sub, "--hold-damping", "dem.hold_damping", K::text,
+        "How holds come to rest: local (local damping alone, the default) or kinetic (also stop every free block when the "
+        "kinetic energy passes a peak; dem/README.md, \"Holds: local or kinetic damping\")");
   sub->add_flag("--quiet", o->quiet, "No progress lines");
   sub->add_flag("--convergence", o->convergence,
                 "Convergence study: the run at these settings and at settings that must not matter (dem/README.md), "

@@ -77,6 +77,9 @@ class DemModel {
   // Energies at the time of the last force evaluation, J: kinetic, gravity (relative to the
   // start), elastic (joint springs), and the work done by the dead loads (relative to the start).
   double kinetic_energy() const;
+  // Every free block at rest (velocities and spins zero), the supports as they are: kinetic
+  // damping's reset.
+  void stop_free_blocks();
   double gravity_energy() const;
   double spring_energy() const;
   double load_work() const;

@@ -23,6 +23,11 @@ double DemModel::support_parameter() const { return p_->d_now; }
 double DemModel::unbalanced_ratio() const { return p_->unbalanced; }
 double DemModel::max_speed() const { return p_->speed; }
 double DemModel::max_kinetic_per_weight() const { return p_->ke_per_weight; }
+void DemModel::stop_free_blocks() {
+  Impl& m = *p_;
+  for (int b = 0; b < m.nb; ++b)
+    if (!m.support[b]) m.vel[b] = Vec2::Zero(), m.spin[b] = 0;
+}
 DemBlockState DemModel::block(int b) const {
   return {p_->pos[b], p_->ang[b], p_->vel[b], p_->spin[b]};
 }

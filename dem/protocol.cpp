@@ -102,6 +102,10 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
   int rising = 0;
   std::vector<Vec2> mid;  // positions half way through the cap
   double first_half = 0;  // m, the largest travel over the first half of the cap
+  // Kinetic damping: stop every free block when the kinetic energy passes a peak, so the hold
+  // relaxes towards the nearest equilibrium without momentum (HoldDamping).
+  const bool kinetic = s.hold_damping == HoldDamping::kinetic;
+  double prev_ke = 0;
   for (long long k = 0; k < budget; ++k) {
     if (k == budget / 2) {
       mid = positions(m, c);
@@ -109,6 +113,15 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     }
     m.cycle();
     ++o.cycles;
+    if (kinetic) {
+      const double ke = m.kinetic_energy();
+      if (ke < prev_ke) {
+        m.stop_free_blocks();
+        prev_ke = 0;
+      } else {
+        prev_ke = ke;
+      }
+    }
     check_finite(m);
     const bool at_rest = m.unbalanced_ratio() < s.equilibrium_tolerance && m.max_speed() < s.velocity_tolerance;
     if (at_rest && k + 1 >= std::min(watch, budget)) {

@@ -104,6 +104,7 @@ void record_settings(Run& u) {
                   {"ramp_fraction", s.ramp_fraction},
                   {"collapse_drift", u.lim.collapse_drift},
                   {"bracket_fraction", s.bracket_fraction},
+                  {"hold_damping", hold_damping_name(s.hold_damping)},
                   {"open_gap", s.open_gap.value_or(u.c.prd.contact_tolerance)},
                   {"step", s.step},
                   {"max_steps", s.max_steps}};

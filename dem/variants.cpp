@@ -48,6 +48,13 @@ std::vector<DemVariant> convergence_variants(const DemSettings& base) {
   DemVariant soft{"softer-joints", "joints x3 softer (kn, ks)", base};
   soft.settings.stiffness_reduction = base.stiffness_reduction * 3;
   v.push_back(soft);
+  // How a hold comes to rest must not matter either: the equilibrium it ends on is the same
+  // whether momentum is removed by local damping alone or also by kinetic damping.
+  DemVariant hd{"hold-damping", "", base};
+  hd.settings.hold_damping = base.hold_damping == HoldDamping::local ? HoldDamping::kinetic : HoldDamping::local;
+  hd.what = std::string("holds with ") + (hd.settings.hold_damping == HoldDamping::kinetic ? "kinetic" : "local damping alone") +
+            (hd.settings.hold_damping == HoldDamping::kinetic ? " damping" : "");
+  v.push_back(hd);
   if (base.friction_angle < 90) {
     DemVariant fr{"more-friction", "", base};
     fr.settings.friction_angle = std::min(90.0, base.friction_angle + 10);

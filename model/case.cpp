@@ -379,7 +379,7 @@ Case parse_case(const std::string& text, const std::string& source) {
     r.only(jd, "dem", {"young_modulus", "poisson", "friction_angle", "kn", "ks", "stiffness_reduction", "damping",
                        "timestep_factor", "equilibrium_tolerance", "velocity_tolerance", "hold_time",
                        "kinetic_ratio", "move_time", "ramp_fraction", "collapse_drift", "bracket_fraction", "open_gap",
-                       "confirm_collapse"});
+                       "confirm_collapse", "hold_damping"});
     DemOptions& d = c.dem;
     d.young_modulus = r.number(jd, "dem", "young_modulus", d.young_modulus);
     d.poisson = r.number(jd, "dem", "poisson", d.poisson);
@@ -399,6 +399,10 @@ Case parse_case(const std::string& text, const std::string& source) {
     d.collapse_drift = r.number(jd, "dem", "collapse_drift", d.collapse_drift);
     if (jd.contains("open_gap")) d.open_gap = r.number(jd["open_gap"], "dem", "open_gap");
     d.confirm_collapse = r.boolean(jd, "dem", "confirm_collapse", d.confirm_collapse);
+    const std::string hd = r.string(jd, "dem", "hold_damping", hold_damping_name(d.hold_damping));
+    if (hd == "local") d.hold_damping = HoldDamping::local;
+    else if (hd == "kinetic") d.hold_damping = HoldDamping::kinetic;
+    else r.fail("dem", "field 'hold_damping' must be \"local\" or \"kinetic\", not \"" + printable(hd) + "\"");
     check_dem(d, r);
   }
 
@@ -492,6 +496,7 @@ std::string case_to_json(const Case& c) {
   if (c.dem.ks) dem["ks"] = *c.dem.ks;
   if (c.dem.open_gap) dem["open_gap"] = *c.dem.open_gap;
   if (c.dem.confirm_collapse) dem["confirm_collapse"] = true;
+  if (c.dem.hold_damping != HoldDamping::local) dem["hold_damping"] = hold_damping_name(c.dem.hold_damping);
   doc["dem"] = dem;
   return doc.dump(1, ' ') + "\n";
 }
@@ -521,6 +526,8 @@ Case with_option(const Case& c, const std::string& key, const nlohmann::json& va
   }
   return parse_case(doc.dump(), source);
 }
+
+const char* hold_damping_name(HoldDamping h) { return h == HoldDamping::kinetic ? "kinetic" : "local"; }
 
 void check_dem_options(const DemOptions& d, const std::string& source) { check_dem(d, Reader{source}); }
 

@@ -75,6 +75,13 @@ struct PrdOptions {
   std::vector<std::string> hold_closed;
 };
 
+// How a hold brings the structure to rest at fixed supports (dem/README.md, "Holds: local or
+// kinetic damping"): local damping alone, or kinetic damping on top of it (every free block
+// stopped whenever the structure's kinetic energy passes a peak, so no momentum carries the
+// structure through a hold).
+enum class HoldDamping { local, kinetic };
+const char* hold_damping_name(HoldDamping h);  // "local", "kinetic": the case field's values
+
 // The DEM's settings, the case's "dem" section (dem/README.md has the model and the protocol).
 // dem/dem.hpp's DemSettings adds the motion's increment to them; nothing else declares them.
 struct DemOptions {
@@ -122,6 +129,7 @@ struct DemOptions {
   // (dem/README.md, "Protocol", stage 4); a failure it does not reproduce becomes an equilibrium
   // and the run goes on. Off by default: near a limit point it lets the capacity creep past it.
   bool confirm_collapse = false;
+  HoldDamping hold_damping = HoldDamping::local;
 };
 
 // Refuses (CaseError, naming `source`, "dem" and the field) settings outside their ranges: the

@@ -42,6 +42,20 @@ TEST(DemTilt, ToppleAtAtanBOverH) {
   EXPECT_GT(std::abs(last.poses[1].angle - last.d), 0.05);
 }
 
+// Kinetic damping in the holds (every free block stopped when the kinetic energy passes a peak)
+// changes how a hold comes to rest, not where: the block still topples at atan(b/h).
+TEST(DemTilt, KineticHoldsToppleAtAtanBOverHToo) {
+  const double b = 0.2, h = 0.4, phi = 45;
+  Case c = test::tilt_case(b, h, phi);
+  c.dem.hold_damping = HoldDamping::kinetic;
+  const RunResult r = test::tilt_run(c);
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
+  EXPECT_EQ(r.settings["hold_damping"], "kinetic");
+  const double topple = std::atan(b / h) / kDeg;
+  EXPECT_LE(r.capacity / kDeg, topple);
+  EXPECT_GT(r.capacity / kDeg, topple - 1.0);
+}
+
 // The results a run hands out while it goes (and a command writes as it goes) say "running":
 // a run stopped from outside must not look finished. Only the end says how it ended.
 TEST(DemTilt, ResultsSayRunningUntilTheRunEnds) {

@@ -292,6 +292,10 @@ TEST(WithOption, ChangesOneSettingAndKeepsTheRest) {
   EXPECT_DOUBLE_EQ(*back.dem.open_gap, 0.002);
   EXPECT_TRUE(back.dem.confirm_collapse);
   EXPECT_FALSE(c.dem.open_gap.has_value() || c.dem.confirm_collapse);
+  // How holds come to rest: a word, local by default.
+  EXPECT_EQ(c.dem.hold_damping, masonry::HoldDamping::local);
+  const masonry::Case k = masonry::with_option(c, "dem.hold_damping", "kinetic");
+  EXPECT_EQ(masonry::parse_case(masonry::case_to_json(k), "back.json").dem.hold_damping, masonry::HoldDamping::kinetic);
 }
 
 TEST(WithOption, BadKeysAndValuesGetTheLoadersError) {
@@ -312,6 +316,9 @@ TEST(WithOption, BadKeysAndValuesGetTheLoadersError) {
   EXPECT_NE(message("motion.step", "big").find("step"), std::string::npos);
   EXPECT_NE(message("dem.open_gap", -1.0).find("field 'open_gap'"), std::string::npos);
   EXPECT_NE(message("dem.confirm_collapse", 1.0).find("confirm_collapse"), std::string::npos);
+  EXPECT_NE(message("dem.hold_damping", "kinetik").find("field 'hold_damping' must be \"local\" or \"kinetic\""), std::string::npos)
+      << message("dem.hold_damping", "kinetik");
+  EXPECT_NE(message("dem.hold_damping", 1.0).find("field 'hold_damping' must be a string"), std::string::npos);
 }
 
 namespace masonry {
