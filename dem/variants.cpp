@@ -50,10 +50,9 @@ std::vector<DemVariant> convergence_variants(const DemSettings& base) {
   v.push_back(soft);
   // How a hold comes to rest must not matter either: the equilibrium it ends on is the same
   // whether momentum is removed by local damping alone or also by kinetic damping.
-  DemVariant hd{"hold-damping", "", base};
-  hd.settings.hold_damping = base.hold_damping == HoldDamping::local ? HoldDamping::kinetic : HoldDamping::local;
-  hd.what = std::string("holds with ") + (hd.settings.hold_damping == HoldDamping::kinetic ? "kinetic" : "local damping alone") +
-            (hd.settings.hold_damping == HoldDamping::kinetic ? " damping" : "");
+  const bool kinetic = base.hold_damping == HoldDamping::local;
+  DemVariant hd{"hold-damping", kinetic ? "holds with kinetic damping" : "holds with local damping alone", base};
+  hd.settings.hold_damping = kinetic ? HoldDamping::kinetic : HoldDamping::local;
   v.push_back(hd);
   if (base.friction_angle < 90) {
     DemVariant fr{"more-friction", "", base};
