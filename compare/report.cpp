@@ -254,8 +254,8 @@ std::string slider_html(const Report& r, int frames) {
 }
 
 // The settled crack pattern each run starts from: the DEM's elastic settling under gravity opens
-// small gaps (tens of microns on tall piers) that are not hinges of the mechanism; its later open
-// corners are measured from these gaps (dem/README.md, "Hinges").
+// small gaps (up to 0.23 mm on the cathedral's tall piers) that are not hinges of the mechanism;
+// its later open corners are measured from these gaps (dem/README.md, "Hinges").
 std::vector<Item> settled_cracks(const Report& r) {
   std::vector<Item> items;
   for (const ReportRun& rr : r.runs) {
@@ -308,6 +308,12 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
                    (cmp.symmetric ? "The scene is symmetric, so a mirror image counts as a match." : "The scene is not symmetric.")});
   d.paragraph({"Joints open at d = 0, before any support motion (the settled crack pattern; a DEM's later hinges are measured from its gaps there):"});
   d.list(settled_cracks(r));
+  if (cmp.hinge_gap > 0)
+    d.paragraph({"Hinges of the support motion: a corner counts as open when its gap has grown by more than " + fmt::g(cmp.hinge_gap * 1e3) +
+                 " mm since d = 0, the widest gap the settling under gravity opened in either run. Compliant joints open gaps that "
+                 "wide with no support motion at all, and the motion moves them by as much elsewhere in the structure as it "
+                 "redistributes the weight; a hinge of the mechanism opens in proportion to d. Both runs are read by this rule, and "
+                 "the drawings mark hinges by it (compare/compare.hpp, settled_gap)."});
   Table h;
   h.head = {"d (mm)", cmp.a.label, cmp.b.label, "agree"};
   h.align = {Align::right, Align::left, Align::left, Align::left};

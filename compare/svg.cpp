@@ -135,7 +135,7 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
   o << "</g>\n";
   // Hinges: the closed corner of a joint with one open corner.
   o << "<g fill=\"#fff\" stroke=\"" << kHinge << "\" stroke-width=\"2.2\">\n";
-  for (const Hinge& h : hinges_of(c, r, s)) {
+  for (const Hinge& h : hinges_of(c, r, s, f.hinge_gap)) {
     const Vec2 p = pl.at(h.i, h.point);
     o << "<circle cx=\"" << px(m.X(p.x())) << "\" cy=\"" << px(m.Y(p.y())) << "\" r=\"5\"><title>hinge " << xml_escape(h.label)
       << "</title></circle>\n";
@@ -184,7 +184,7 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     o << "</g>\n";
   }
   // Status line under the drawing.
-  const size_t nh = hinges_of(c, r, s).size();
+  const size_t nh = hinges_of(c, r, s, f.hinge_gap).size();
   o << "<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.Y(f.lo.y()) + 16) << "\" text-anchor=\"middle\" font-size=\"12\" fill=\"#333\">"
     << s.cracked.size() << " cracked joint" << (s.cracked.size() == 1 ? "" : "s") << ", " << nh << " hinge" << (nh == 1 ? "" : "s")
     << "</text>\n";
@@ -205,6 +205,7 @@ DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs) {
       f.weight = r->total_weight > 0 ? r->total_weight : f.weight;
     }
   if (box.empty()) box = scene_bounds(c);
+  for (const RunResult* r : runs) f.hinge_gap = std::max(f.hinge_gap, settled_gap(*r));
   const double size = box.size();
   // Forces drawn at 0.35 scene sizes per total weight: an arch's thrust (0.2-0.5 W) reads as a
   // clear segment without covering the blocks.

@@ -16,8 +16,10 @@ struct DrawFrame {
   Vec2 lo{0, 0}, hi{1, 1};   // world window, m
   double force_len = 1.0;    // m of drawing per unit of F / W
   double weight = 1.0;       // N, total weight (forces are drawn relative to it)
+  double hinge_gap = 0.0;    // m, the opening a hinge needs beyond its settled gap (settled_gap)
 };
-// The window covering every stable record of the runs, with room for the reaction arrows.
+// The window covering every stable record of the runs, with room for the reaction arrows; the
+// hinge rule of the runs' comparisons (the widest settled gap of any of them).
 DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs);
 
 // One panel per (run, record) side by side, titles above, a legend below. A null record draws
