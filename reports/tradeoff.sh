@@ -6,10 +6,12 @@
 #
 # The runs (results.json of every setting, several MB each for the cathedral) go to $WORK
 # (default out/tradeoff/, not checked in); reports/ keeps only the csv, json, md, html and svg.
-# Times: the pointed arch's PRD plan takes seconds and its DEM plan about 6 times a baseline run's
-# cost for the reference plus about 10 more, i.e. some 10 CPU minutes; the cathedral's PRD plan
-# seconds, its DEM settings tens of minutes each (its reference is the committed 35-minute run of
-# reports/compare-cathedral-settlement/dem/, read back). --resume reuses every finished run, so an
+# Times (2026-11-24): the pointed arch's PRD plan takes seconds and its DEM plan about 1.5 CPU
+# minutes (the reference, full stiffness at 0.5 mm, 31 s); the cathedral's PRD plan seconds, its
+# eight DEM settings 1-7 CPU minutes each, about 40 in all (its reference is the committed
+# 7-minute default run of reports/compare-cathedral-settlement/dem/, read back). The DEM
+# settings are independent runs: with the case files of `masonry tradeoff ... --dry-run`,
+# `masonry dem RUNS/<id>/case.json --out RUNS/<id>` can run them side by side first. --resume reuses every finished run, so an
 # interrupted script picks up where it stopped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
