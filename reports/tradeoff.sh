@@ -11,7 +11,8 @@
 # eight DEM settings 1-7 CPU minutes each, about 40 in all (its reference is the committed
 # 7-minute default run of reports/compare-cathedral-settlement/dem/, read back). The DEM
 # settings are independent runs: with the case files of `masonry tradeoff ... --dry-run`,
-# `masonry dem RUNS/<id>/case.json --out RUNS/<id>` can run them side by side first. --resume reuses every finished run, so an
+# `masonry dem RUNS/<id>/case.json --out RUNS/<id>` can run them side by side first (--resume
+# then reads their times back from results.json, marked wall, though a DEM run's is CPU time). --resume reuses every finished run, so an
 # interrupted script picks up where it stopped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
