@@ -208,27 +208,27 @@ double settled_gap(const RunResult& r) {
 
 std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord& s, double min_opening) {
   std::map<std::pair<int, int>, double> settled;  // (joint, corner) -> gap at d = 0
-  if (min_opening > 0 && !r.steps.empty())
+  if (!r.steps.empty() && &s != &r.steps.front())
     for (const OpenCorner& o : r.steps.front().open_corners) settled[{o.joint, o.corner}] = o.gap;
-  std::map<int, std::vector<int>> open;  // joint -> open corners
+  std::map<int, std::vector<std::pair<int, double>>> open;  // joint -> (open corner, opening)
   for (const OpenCorner& o : s.open_corners) {
-    if (min_opening > 0) {
-      const auto it = settled.find({o.joint, o.corner});
-      if (!(o.gap - (it == settled.end() ? 0.0 : it->second) > min_opening)) continue;
-    }
-    open[o.joint].push_back(o.corner);
+    const auto it = settled.find({o.joint, o.corner});
+    const double opening = o.gap - (it == settled.end() ? 0.0 : it->second);
+    if (min_opening > 0 && !(opening > min_opening)) continue;
+    open[o.joint].push_back({o.corner, opening});
   }
   std::vector<Hinge> out;
-  for (const auto& [joint, corners] : open) {
-    if (corners.size() != 1 || joint < 0 || joint >= int(r.joints.size())) continue;
+  for (const auto& [joint, ends] : open) {
+    if (ends.size() != 1 || joint < 0 || joint >= int(r.joints.size())) continue;
     const JointInfo& ji = r.joints[joint];
     Hinge h;
     h.joint = joint;
     h.i = ji.i;
     h.j = ji.j;
-    h.corner = 1 - corners[0];
+    h.corner = 1 - ends[0].first;
     h.point = h.corner == 0 ? ji.a : ji.b;
     h.label = corner_name(c, ji.i, ji.j, h.corner);
+    h.opening = ends[0].second;
     out.push_back(h);
   }
   return out;
@@ -442,14 +442,22 @@ ojson to_json(const Comparison& k) {
   j["thrust"] = t;
   ojson hc = ojson::array();
   for (const HingeCheck& h : k.hinges) {
-    ojson ha = ojson::array(), hb = ojson::array();
-    for (const Hinge& x : h.a) ha.push_back(x.label);
-    for (const Hinge& x : h.b) hb.push_back(x.label);
+    ojson ha = ojson::array(), hb = ojson::array(), oa = ojson::array(), ob = ojson::array();
+    for (const Hinge& x : h.a) {
+      ha.push_back(x.label);
+      oa.push_back(json_number(x.opening));
+    }
+    for (const Hinge& x : h.b) {
+      hb.push_back(x.label);
+      ob.push_back(json_number(x.opening));
+    }
     hc.push_back({{"d", json_number(h.d)},
                   {"d_a", json_number(h.d_a)},
                   {"d_b", json_number(h.d_b)},
                   {"a", ha},
                   {"b", hb},
+                  {"a_opening", oa},
+                  {"b_opening", ob},
                   {"match", h.match},
                   {"mirror", h.mirror}});
   }
@@ -477,11 +485,12 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
     for (const HingeCheck& h : k.hinges) {
       if (h.ok()) continue;
       // Name only the hinges that differ: a cathedral has a dozen, most of them shared.
+      // With their openings since d = 0, so a hinge just past the threshold reads as such.
       std::string la, lb;
       for (const Hinge& x : h.a)
-        if (!contains_hinge(h.b, x)) la += (la.empty() ? "" : ", ") + x.label;
+        if (!contains_hinge(h.b, x)) la += (la.empty() ? "" : ", ") + x.label + " (" + fmt(x.opening * 1e3, 2) + " mm)";
       for (const Hinge& x : h.b)
-        if (!contains_hinge(h.a, x)) lb += (lb.empty() ? "" : ", ") + x.label;
+        if (!contains_hinge(h.a, x)) lb += (lb.empty() ? "" : ", ") + x.label + " (" + fmt(x.opening * 1e3, 2) + " mm)";
       out.push_back("hinges: at d = " + fmt(h.d) + " m only " + k.a.label + " has {" + la + "}, only " + k.b.label + " has {" + lb +
                     "}" + (k.symmetric ? " (not mirror images either)" : ""));
     }

@@ -32,6 +32,7 @@ struct Hinge {
   int corner = 0;        // the closed corner: 0 = A, 1 = B
   std::string label;     // "v3/v4:A", corner_name (block ids: case text, escape before display)
   Vec2 point{0, 0};      // the closed corner, initial configuration
+  double opening = 0.0;  // m, the open corner's gap beyond its gap in the run's first record
 };
 
 struct HingeCheck {

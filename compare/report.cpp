@@ -33,9 +33,11 @@ Panel panel(const ReportRun& rr, const StepRecord* s, double d) {
   return p;
 }
 
+// Each hinge with how far it has opened since d = 0 (mm), so a reader tells a hinge of the
+// mechanism from one just past the threshold.
 std::string hinge_list(const std::vector<Hinge>& hs) {
   std::string o;
-  for (const Hinge& h : hs) o += (o.empty() ? "" : ", ") + h.label;
+  for (const Hinge& h : hs) o += (o.empty() ? "" : ", ") + h.label + " (" + fmt::g(h.opening * 1e3, 2) + ")";
   return o.empty() ? "none" : o;
 }
 
@@ -304,7 +306,8 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   d.list({{{cmp.a.label + ": " + changes_mm(cmp.a)}, {}}, {{cmp.b.label + ": " + changes_mm(cmp.b)}, {}}});
   d.heading(3, {"Hinges"});
   d.paragraph({"A hinge is a joint with exactly one open corner; listed as ", Cell("block/block:corner", CellStyle::code),
-               std::string(" (the joint's two blocks and the corner, A or B, it turns about). ") +
+               std::string(" (the joint's two blocks and the corner, A or B, it turns about) with, in brackets, how far its open "
+                           "corner has opened since d = 0, in mm. ") +
                    (cmp.symmetric ? "The scene is symmetric, so a mirror image counts as a match." : "The scene is not symmetric.")});
   d.paragraph({"Joints open at d = 0, before any support motion (the settled crack pattern; a DEM's later hinges are measured from its gaps there):"});
   d.list(settled_cracks(r));

@@ -169,7 +169,29 @@ TEST(Compare, HingesAreWhatTheMotionOpensBeyondTheSettledGaps) {
   EXPECT_TRUE(check_tolerances(k, {std::nullopt, std::nullopt, true}).empty());
   // Opening by more than the settled gap is the motion's hinge.
   const Comparison wide = compare_runs(c, r, with_crack(0.3e-3));
-  for (const HingeCheck& h : wide.hinges) EXPECT_FALSE(h.ok()) << "d = " << h.d;
+  for (const HingeCheck& h : wide.hinges) {
+    EXPECT_FALSE(h.ok()) << "d = " << h.d;
+    // The extra hinge is the crack, opened by what it grew since d = 0.
+    int found = 0;
+    for (const Hinge& x : h.b)
+      if (x.joint == quiet) {
+        ++found;
+        EXPECT_NEAR(x.opening, 0.3e-3, 1e-15);
+      }
+    EXPECT_EQ(found, 1) << "d = " << h.d;
+  }
+  // PRD settles closed: a hinge's opening is its open corner's gap.
+  for (const HingeCheck& h : k.hinges)
+    for (const Hinge& x : h.a) {
+      const StepRecord* s = record_at(stable_records(r), h.d);
+      bool seen = false;
+      for (const OpenCorner& o : s->open_corners)
+        if (o.joint == x.joint && o.corner == 1 - x.corner) {
+          seen = true;
+          EXPECT_EQ(x.opening, o.gap);
+        }
+      EXPECT_TRUE(seen) << x.label;
+    }
   // PRD's own hinges at every check open by more than 0.23 mm: the rule drops none of them.
   for (const HingeCheck& h : k.hinges) EXPECT_EQ(h.a.size(), hinges_of(c, r, *record_at(stable_records(r), h.d)).size());
 }
