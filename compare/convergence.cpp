@@ -188,7 +188,15 @@ std::string convergence_markdown(const Convergence& c) {
       d.list(std::move(items));
     }
   } else if (v.ok) {
-    d.paragraph({Cell("Converged", CellStyle::strong), ": every run located its collapse and the capacities agree within the limits."});
+    // A run that ends at its last increment (max_steps) has an answer too, the end of its path,
+    // but not a collapse: say which, so a study of the first centimetres does not read as one of
+    // capacities.
+    bool all_collapsed = true;
+    for (const ConvergenceEntry& e : c.entries) all_collapsed = all_collapsed && e.run.status == RunStatus::collapse;
+    d.paragraph({Cell("Converged", CellStyle::strong),
+                 all_collapsed ? ": every run located its collapse and the capacities agree within the limits."
+                               : ": every run located its answer, a collapse or the end of its path (max_steps), and those agree within the "
+                                 "limits; a run that ends at the end of its path has not been taken to collapse."});
   } else {
     d.paragraph({Cell("Not shown converged", CellStyle::strong), ":"});
     std::vector<Item> items;

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "compare/compare.hpp"
+#include "compare/convergence.hpp"
 #include "prd/prd.hpp"
 
 namespace masonry {
@@ -304,6 +305,30 @@ TEST(Compare, MissingNumbersAreNullNotNaN) {
   EXPECT_TRUE(j["capacity"]["relative_difference"].is_null());
   EXPECT_EQ(j.dump().find("NaN"), std::string::npos);
   EXPECT_FALSE(check_tolerances(k, {0.05, std::nullopt, false}).empty());  // unknown is not a pass
+}
+
+// A study whose runs end at the end of their path (max_steps, as a study of the first
+// centimetres does) agrees on that end, not on a collapse, and its verdict says so.
+TEST(Convergence, AStudyOfPathEndsDoesNotReadAsOneOfCollapses) {
+  const auto study = [](RunStatus s) {
+    Convergence c;
+    c.case_name = "t";
+    for (const char* name : {"default", "other"}) {
+      RunResult r;
+      r.status = s;
+      r.capacity = 0.1;
+      c.entries.push_back({name, name, r});
+    }
+    c.prd_capacity = 0.1;
+    return c;
+  };
+  const Convergence ends = study(RunStatus::max_steps), collapses = study(RunStatus::collapse);
+  ASSERT_TRUE(judge(ends).ok);
+  ASSERT_TRUE(judge(collapses).ok);
+  const std::string a = convergence_markdown(ends), b = convergence_markdown(collapses);
+  EXPECT_EQ(a.find("located its collapse"), std::string::npos) << a;
+  EXPECT_NE(a.find("end of its path"), std::string::npos) << a;
+  EXPECT_NE(b.find("located its collapse"), std::string::npos) << b;
 }
 
 TEST(Compare, ToleranceFileIsStrict) {
