@@ -151,6 +151,10 @@ std::string convergence_markdown(const Convergence& c) {
     }
   }
   d.table(std::move(t));
+  // "The default" is the case's settings as the command changed them (a stiffness, a hold cap,
+  // a number of increments): the settings its run recorded make the study reproducible.
+  if (!c.entries.empty() && !c.entries.front().run.settings.empty())
+    d.paragraph({"The default's DEM settings (its results.json): ", Cell(c.entries.front().run.settings.dump(), CellStyle::code)});
   d.paragraph({"PRD capacity: " + (c.prd_capacity ? fmt::number(*c.prd_capacity, "%.4f m", *c.prd_capacity) : std::string("not run")) + "."});
   if (!stiffness)
     d.paragraph({"Spread (largest minus smallest capacity, over the default's): " +
