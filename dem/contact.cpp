@@ -148,7 +148,8 @@ struct ClipVertex {
 
 // Keeps the part of the segment with normal . x <= offset; a cut point inherits the slot of the
 // vertex it replaces, so slots name the ends of the incident edge whatever the clipping did.
-int clip_segment(ClipVertex out[2], const ClipVertex in[2], const Vec2& normal, double offset) {
+// Inlined: called twice per touching pair per cycle.
+inline __attribute__((always_inline)) int clip_segment(ClipVertex out[2], const ClipVertex in[2], const Vec2& normal, double offset) {
   int n = 0;
   const double d0 = normal.dot(in[0].v) - offset, d1 = normal.dot(in[1].v) - offset;
   if (d0 <= 0) out[n++] = in[0];
@@ -184,11 +185,19 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
   // difference of two by at most twice that; the factor 2 left over covers rounding).
   switch (cache.state) {
     case SatCache::kApartA:
-      if (edge_separation(cache.edge_a, va, na, vb, cb) > 0) return false;
+    case SatCache::kApartB: {
+      // Apart by at least the slack (half the separation last measured, the half for rounding):
+      // no separation can have closed by more than the motion since, so nothing to compute.
+      cache.slack -= motion;
+      if (cache.slack > 0) return false;
+      const double sep = cache.state == SatCache::kApartA ? edge_separation(cache.edge_a, va, na, vb, cb)
+                                                          : edge_separation(cache.edge_b, vb, nb, va, ca);
+      if (sep > 0) {
+        cache.slack = 0.5 * sep;
+        return false;
+      }
       break;
-    case SatCache::kApartB:
-      if (edge_separation(cache.edge_b, vb, nb, va, ca) > 0) return false;
-      break;
+    }
     case SatCache::kTouching:
       cache.slack -= motion;
       if (cache.slack > 0) {
@@ -212,12 +221,14 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
     if (sep_a > 0) {
       cache.state = SatCache::kApartA;
       cache.edge_a = static_cast<unsigned char>(edge_a);
+      cache.slack = 0.5 * sep_a;
       return false;
     }
     sep_b = max_separation(edge_b, second_b, vb, nb, cb, va, ca);
     if (sep_b > 0) {
       cache.state = SatCache::kApartB;
       cache.edge_b = static_cast<unsigned char>(edge_b);
+      cache.slack = 0.5 * sep_b;
       return false;
     }
     flip = sep_b > sep_a + k_tol;

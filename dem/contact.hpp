@@ -53,8 +53,9 @@ struct SatCache {
   State state = kNone;
   bool flip = false;
   unsigned char edge_a = 0, edge_b = 0, inc = 0;  // best edges of A and B, incident edge
-  // Touching: how much more relative motion (m, in the units of `motion` below) the decisions
-  // (best edges, flip, incident edge) can take before they might change.
+  // How much more relative motion (m, in the units of `motion` below) the cached state can take
+  // before it might change: touching, the decisions (best edges, flip, incident edge); apart,
+  // the separation itself.
   double slack = 0.0;
 };
 

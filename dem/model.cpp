@@ -374,9 +374,12 @@ void DemModel::Impl::integrate() {
       spd = std::max(spd, v_new.norm() + std::abs(w_new) * gyr[b]);
     }
     // The motion actually taken (differences of the stored doubles, so rounding is included).
+    // Both are bounds, so |dx| + |dy| stands for the length: it is never shorter, and a looser
+    // bound only means an earlier search or rebuild, never another result (collide_cached gives
+    // collide()'s manifold whatever its cache holds; a rebuild keeps every touching pair).
     turned[b] = std::abs(ang[b] - th_old);
-    moved[b] = (pos[b] - x_old).norm() + turned[b] * rmax[b];
-    if ((pos[b] - pos_rb[b]).norm() + std::abs(ang[b] - ang_rb[b]) * rmax[b] > half_margin) due = true;
+    moved[b] = (pos[b] - x_old).cwiseAbs().sum() + turned[b] * rmax[b];
+    if ((pos[b] - pos_rb[b]).cwiseAbs().sum() + std::abs(ang[b] - ang_rb[b]) * rmax[b] > half_margin) due = true;
   }
   rebuild_due = due;
   d_now = d_target;
