@@ -4,7 +4,9 @@
 #include <box2d/b2_polygon_shape.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "dem/contact.hpp"
 #include "dem/dem.hpp"
@@ -191,6 +193,73 @@ TEST(DemGeometry, BlocksMeetingOneEdgeStandOnTheirWholeBase) {
     ++on_slab;
   }
   EXPECT_EQ(on_slab, 2);
+}
+
+TEST(DemGeometry, CachedManifoldIsCollidesAlongRandomPaths) {
+  // The cache (dem::collide_cached) reuses the separating-axis decisions of the last call while
+  // the motion since provably cannot have changed them, and skips a pair found apart while the
+  // motion cannot have closed its gap: the manifold must be collide()'s, bit for bit, at every
+  // step of a path that approaches, touches, slides, turns and separates, with the motion bound
+  // the model uses (|dx| + |dy| + |dth| r per block, plus the turns times the lever).
+  const std::vector<Vec2> box = {Vec2(-0.2, -0.1), Vec2(0.2, -0.1), Vec2(0.2, 0.1), Vec2(-0.2, 0.1)};
+  const std::vector<Vec2> quad = {Vec2(-0.18, -0.1), Vec2(0.16, -0.1), Vec2(0.2, 0.08), Vec2(-0.15, 0.1)};
+  double r_a = 0, r_b = 0;
+  for (const Vec2& v : box) r_a = std::max(r_a, v.norm());
+  for (const Vec2& v : quad) r_b = std::max(r_b, v.norm());
+  const double lever = 2.5 * (r_a + r_b);
+  std::mt19937 rng(12);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  long long compared = 0, touching = 0;
+  for (int path = 0; path < 24; ++path) {
+    const double step = std::pow(10.0, -8 + 4 * (path % 3) / 2.0);  // 1e-8, 1e-6, 1e-4 m
+    const int n = 3000;
+    // B slides across A's top face (y = 0.1) from beyond one end to beyond the other, rocking by
+    // up to 0.9 rad (so its incident edge changes): its lowest corner starts some 1e-4 m above
+    // the face, sinks 1e-4 m into it by mid-path and rises again, so the pair goes from apart to
+    // touching on a corner, on a face, on another corner, and apart. Jitter of the step's size in
+    // every coordinate, A's included.
+    const double g0 = 1e-4 * std::abs(gauss(rng)), x0 = 0.35 + 0.02 * gauss(rng);
+    Vec2 xa(0, 0), xb(-x0, 0.3);
+    double tha = 0, thb = 0;
+    dem::SatCache cache;
+    for (int k = 0; k <= n; ++k) {
+      const Vec2 xa0 = xa, xb0 = xb;
+      const double tha0 = tha, thb0 = thb;
+      const double u = static_cast<double>(k) / n, f = std::abs(1.0 - 2.0 * u);  // f: 1 -> 0 -> 1
+      thb = 0.9 * std::sin(2 * M_PI * u) + 0.1 * step * gauss(rng);
+      double low = INFINITY;  // B's lowest vertex below its centre at this turn
+      for (const Vec2& v : quad) low = std::min(low, std::sin(thb) * v.x() + std::cos(thb) * v.y());
+      xb = Vec2(-x0 + 2 * x0 * u + step * gauss(rng), 0.1 - low + (-1e-4 + f * (g0 + 1e-4)) + step * gauss(rng));
+      xa += 0.1 * step * Vec2(gauss(rng), gauss(rng));
+      tha += 0.01 * step * gauss(rng);
+      const Poly A = place(box, xa, tha), B = place(quad, xb, thb);
+      const double turned_a = std::abs(tha - tha0), turned_b = std::abs(thb - thb0);
+      const double motion = (xa - xa0).cwiseAbs().sum() + turned_a * r_a + (xb - xb0).cwiseAbs().sum() + turned_b * r_b +
+                            (turned_a + turned_b) * lever;
+      dem::Manifold got, want;
+      const bool hit = dem::collide_cached(A.v.data(), A.n.data(), 4, B.v.data(), B.n.data(), 4, motion, lever, cache, got);
+      const bool hit_fresh = dem::collide(A.v.data(), A.n.data(), 4, B.v.data(), B.n.data(), 4, want);
+      SCOPED_TRACE("path " + std::to_string(path) + ", step " + std::to_string(k));
+      ASSERT_EQ(hit, hit_fresh);
+      ASSERT_EQ(got.count, want.count);
+      ++compared;
+      if (!hit) continue;
+      ++touching;
+      ASSERT_EQ(got.normal, want.normal);
+      ASSERT_EQ(got.flip, want.flip);
+      ASSERT_EQ(got.ref_edge, want.ref_edge);
+      ASSERT_EQ(got.inc_edge, want.inc_edge);
+      ASSERT_EQ(got.clip_length, want.clip_length);
+      for (int i = 0; i < got.count; ++i) {
+        ASSERT_EQ(got.points[i].point, want.points[i].point);
+        ASSERT_EQ(got.points[i].separation, want.points[i].separation);
+        ASSERT_EQ(got.points[i].slot, want.points[i].slot);
+      }
+    }
+  }
+  // Both regimes were exercised: apart for much of each path, touching around its middle.
+  EXPECT_GT(touching, compared / 10);
+  EXPECT_LT(touching, compared * 9 / 10);
 }
 
 }  // namespace
