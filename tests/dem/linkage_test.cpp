@@ -135,9 +135,9 @@ TEST(DemSettledCathedral, TheNaveSwaysAsTheFourBarLinkageOfItsOpenJoints) {
   ASSERT_LT(v2, 0) << "the linkage is stable by the closed form (V'' = " << v2 << " J/rad^2)";
   const double rate = std::sqrt(-v2 / I) * std::sqrt(1 - s.damping);
 
-  // The DEM: the left segment's spin while the sway grows from rounding noise to where the first
-  // hinge closes (about 1e-4 rad/s on this scene); fit log|spin| against time between 1e-7 and
-  // 1e-5 rad/s.
+  // The DEM: the left segment's spin while the sway grows from rounding noise to where a hinge
+  // closes (about 1e-4 rad/s on this scene); fit log|spin| against time between 1e-6 and 1e-5
+  // rad/s, once the settling's own decaying motion (which still shows below 1e-6) is gone.
   const int probe = lk.seg[0].blocks[lk.seg[0].blocks.size() / 2], crown = lk.seg[1].blocks[lk.seg[1].blocks.size() / 2],
             right = lk.seg[2].blocks[lk.seg[2].blocks.size() / 2];
   std::vector<double> ts, ls;
@@ -145,14 +145,14 @@ TEST(DemSettledCathedral, TheNaveSwaysAsTheFourBarLinkageOfItsOpenJoints) {
   for (double t = 1.75; t < 15 && std::abs(w) < 1e-5; t += 0.25) {
     cycles_to(t);
     w = m.block(probe).spin;
-    if (std::abs(w) > 1e-7) ts.push_back(m.time()), ls.push_back(std::log(std::abs(w)));
+    if (std::abs(w) > 1e-6) ts.push_back(m.time()), ls.push_back(std::log(std::abs(w)));
   }
-  ASSERT_GE(ts.size(), 6u) << "the sway did not grow through 1e-7..1e-5 rad/s within 15 s";
+  ASSERT_GE(ts.size(), 6u) << "the sway did not grow through 1e-6..1e-5 rad/s within 15 s";
   double st = 0, sl = 0, stt = 0, stl = 0;
   const double n = static_cast<double>(ts.size());
   for (size_t i = 0; i < ts.size(); ++i) st += ts[i], sl += ls[i], stt += ts[i] * ts[i], stl += ts[i] * ls[i];
   const double measured = (n * stl - st * sl) / (n * stt - st * st);
-  EXPECT_NEAR(measured, rate, 0.1 * rate) << "closed form lambda sqrt(1 - alpha) = " << rate << " 1/s, V'' = " << v2 << " J/rad^2, I = " << I;
+  EXPECT_NEAR(measured, rate, 0.05 * rate) << "closed form lambda sqrt(1 - alpha) = " << rate << " 1/s, V'' = " << v2 << " J/rad^2, I = " << I;
   // The mode: every block of a segment turns at the segment's rate, in the linkage's ratios.
   EXPECT_NEAR(m.block(crown).spin / m.block(probe).spin, r_crown, 0.02 * std::abs(r_crown));
   EXPECT_NEAR(m.block(right).spin / m.block(probe).spin, r_right, 0.02 * std::abs(r_right));
