@@ -167,7 +167,7 @@ std::string convergence_markdown(const Convergence& c) {
     std::vector<Item> items;
     auto line = [&](const std::string& who, const std::string& other, const RunResult& a, const RunResult& b) {
       const std::optional<Parting> p = parting(c, a, b);
-      items.push_back({{who + ": " + (!p ? "the same open joints as " + other + " to the end of the common range"
+      items.push_back({{who + ": " + (!p ? "no parting from " + other + " for good (open joints that differ, if any, close again before the end of the common range)"
                                          : "from d = " + fmt::number(p->d, "%.4f", p->d) + " m, open only here: " + joined(p->only_a) +
                                                "; only in " + other + ": " + joined(p->only_b) + ". At d = " +
                                                fmt::number(p->end_d, "%.4f", p->end_d) + " m, the end of the common range, only here: " +
