@@ -26,17 +26,12 @@ namespace {
 Vec2 turn(double t, const Vec2& v) { return Vec2(std::cos(t) * v.x() - std::sin(t) * v.y(), std::sin(t) * v.x() + std::cos(t) * v.y()); }
 Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }
 
-struct Segment {
-  std::vector<int> blocks;
-  double mass = 0;
-};
-
 // A four-bar linkage: ground pivots p1, p4; segment 0 turns about p1, 1 hangs between p2 and p3,
 // 2 turns about p4.
 struct Linkage {
   const Case* c = nullptr;
   Vec2 p1, p2, p3, p4;
-  Segment seg[3];
+  std::vector<int> seg[3];  // the blocks of each segment
 
   // The crown's and the right segment's rotations for a left rotation th (loop closure, Newton).
   void close(double th, double& phi, double& psi) const {
@@ -60,7 +55,7 @@ struct Linkage {
     const Vec2 q2 = p1 + turn(th, p2 - p1);
     double v = 0;
     for (int s = 0; s < 3; ++s)
-      for (int b : seg[s].blocks) {
+      for (int b : seg[s]) {
         const Vec2 x = centroid(c->blocks[b].vertices);
         const Vec2 y = s == 0 ? Vec2(p1 + turn(th, x - p1)) : s == 1 ? Vec2(q2 + turn(phi, x - p2)) : Vec2(p4 + turn(psi, x - p4));
         v += block_mass(c->blocks[b]) * c->gravity * y.y();
@@ -76,7 +71,7 @@ struct Linkage {
     r_right = psi / h;
     double I = 0;
     for (int s = 0; s < 3; ++s)
-      for (int b : seg[s].blocks) {
+      for (int b : seg[s]) {
         const Block& bl = c->blocks[b];
         const Vec2 x = centroid(bl.vertices);
         const double w = s == 0 ? 1 : s == 1 ? r_crown : r_right;
@@ -124,7 +119,7 @@ TEST(DemSettledCathedral, TheNaveSwaysAsTheFourBarLinkageOfItsOpenJoints) {
   for (int b = 0; b < static_cast<int>(c.blocks.size()); ++b) {
     const int k = nave_index(c, b);
     for (int s = 0; s < 3; ++s)
-      if (k > at[order[s]] && k <= at[order[s + 1]]) lk.seg[s].blocks.push_back(b);
+      if (k > at[order[s]] && k <= at[order[s + 1]]) lk.seg[s].push_back(b);
   }
 
   // The closed form: V'' by central differences of the exact (finite-rotation) potential.
@@ -138,8 +133,8 @@ TEST(DemSettledCathedral, TheNaveSwaysAsTheFourBarLinkageOfItsOpenJoints) {
   // The DEM: the left segment's spin while the sway grows from rounding noise to where a hinge
   // closes (about 1e-4 rad/s on this scene); fit log|spin| against time between 1e-6 and 1e-5
   // rad/s, once the settling's own decaying motion (which still shows below 1e-6) is gone.
-  const int probe = lk.seg[0].blocks[lk.seg[0].blocks.size() / 2], crown = lk.seg[1].blocks[lk.seg[1].blocks.size() / 2],
-            right = lk.seg[2].blocks[lk.seg[2].blocks.size() / 2];
+  const int probe = lk.seg[0][lk.seg[0].size() / 2], crown = lk.seg[1][lk.seg[1].size() / 2],
+            right = lk.seg[2][lk.seg[2].size() / 2];
   std::vector<double> ts, ls;
   double w = 0;
   for (double t = 1.75; t < 15 && std::abs(w) < 1e-5; t += 0.25) {
