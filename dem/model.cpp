@@ -284,10 +284,11 @@ void DemModel::Impl::contact_forces() {
   Manifold m;
   for (Pair& pr : pairs) {
     const int pa = pr.pa, pb = pr.pb, ba = pr.ba, bb = pr.bb;
-    // Only the shear history is carried from one cycle to the next.
+    // Only the shear history is carried from one cycle to the next (with where it acted).
     const int nold = pr.n;
     const int old_key[2] = {pr.pt[0].key, pr.pt[1].key};
     const double old_fs[2] = {pr.pt[0].fs, pr.pt[1].fs};
+    const Vec2 old_point[2] = {pr.pt[0].point, pr.pt[1].point};
     pr.n = 0;
     const double motion = moved[ba] + moved[bb] + (turned[ba] + turned[bb]) * pr.lever;
     if (!dem::collide_cached(&world_v[piece_off[pa]], &world_n[piece_off[pa]], piece_cnt[pa], &world_v[piece_off[pb]],
@@ -299,12 +300,25 @@ void DemModel::Impl::contact_forces() {
     // contacts from being arbitrarily soft.
     const double area = std::max(m.clip_length, 0.1 * margin) * dep / 2;
     const Vec2 n = m.normal, t = perp(n);
+    // A point whose feature id is new inherits the shear of an old point within a quarter of the
+    // joint of it: the same physical contact under another id. At an open hinge the two faces
+    // meet at an angle, and which of them the manifold takes as its reference face (Box2D's
+    // preference for A unless B is better by 0.1 b2_linearSlop, 0.5 mm) flips back and forth
+    // once the hinge has opened about that far; each flip changed the id and dropped the
+    // point's shear, and the nave's springing on the settlement cathedral lost 3.2e5 N (|T|/N
+    // 0.23, far from friction) every 40 ms and slid some 11 um after each loss, a creep no
+    // friction law allows (dem/README.md, "Shear history"). The two points of a manifold are a
+    // clipped joint apart, so a quarter of it never pairs a point with the other end's.
+    const double same_point = 0.25 * std::max(m.clip_length, 0.1 * margin);
     for (int i = 0; i < m.count; ++i) {
       const dem::ManifoldPoint& mp = m.points[i];
       const int key = ((m.ref_edge * dem::kMaxPieceVertices + m.inc_edge) * 2 + m.flip) * 2 + mp.slot;
       double fs = 0;
+      bool found = false;
       for (int o = 0; o < nold; ++o)
-        if (old_key[o] == key) fs = old_fs[o];
+        if (old_key[o] == key) fs = old_fs[o], found = true;
+      for (int o = 0; o < nold && !found; ++o)
+        if ((old_point[o] - mp.point).squaredNorm() < same_point * same_point) fs = old_fs[o], found = true;
       const Vec2 ra = mp.point - pos[ba], rb = mp.point - pos[bb];
       const Vec2 vr = vel[bb] + spin[bb] * perp(rb) - vel[ba] - spin[ba] * perp(ra);
       const double overlap = -mp.separation;
