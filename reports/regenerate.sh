@@ -35,16 +35,6 @@ for name in pointed-arch cathedral-settlement cathedral-settlement-rotation; do
     "$masonry" compare cases/$name.json --out "$out" --friction 35 ${extra[$name]} --tolerances $tolerances $(notes "$out") || failed+=("$name")
   fi
 done
-# The settlement cathedral's second mechanism (dem/README.md, "Branches"): the DEM at its defaults
-# takes it (its DEM run is the same as compare-cathedral-settlement's); PRD follows it with its
-# springing corner held closed (and then pulls there). Not a paper case: its limits are
-# reported, not required.
-out=reports/compare-cathedral-settlement-second-mechanism
-if [ $render = 1 ]; then
-  "$masonry" compare cases/cathedral-settlement.json --out "$out" --runs "$out/prd" "$out/dem" --tolerances $tolerances $(notes "$out") --quiet
-else
-  "$masonry" compare cases/cathedral-settlement.json --out "$out" --friction 35 --hold nave-41/R-pier-30:A --tolerances $tolerances $(notes "$out")
-fi
 # The settlement scene with joints 30 times stiffer than the case's (dem/README.md, "Joint
 # stiffness"): PRD's blocks are rigid, the limit of stiffening joints, so this shows whether the
 # settlement comparison's difference is the elastic model's. Not a paper case: its limits are
