@@ -71,7 +71,7 @@ struct PrdOptions {
   // Joint corners kept closed over the whole run ("BLOCK/BLOCK:A", as results name them): the
   // mechanism the structure would follow if those corners could not open (they may carry
   // tension). Where two mechanisms release almost the same energy, holding the first one's hinge
-  // shows the second one's capacity (dem/README.md, "Branches").
+  // shows the second one's capacity (dem/README.md, "The branch X").
   std::vector<std::string> hold_closed;
 };
 

@@ -17,7 +17,7 @@ namespace {
 // With corners held closed: the least force the LP's force state gives a held corner over the
 // run. Negative means the held path is carried by a tension there; where the held run's first
 // step also releases less energy than the free run's, no compressive force state can carry it
-// (LP duality), so a no-tension structure leaves that path (dem/README.md, "Branches").
+// (LP duality), so a no-tension structure leaves that path (dem/README.md, "The branch X").
 void report_held(const RunResult& r) {
   double least = INFINITY, at = 0;
   std::string which;
@@ -111,7 +111,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                   "1/250 of the scene at the default tolerance)");
     settings->add(sub, "--hold", "prd.hold_closed", K::texts,
                   "Keep this joint corner closed over the whole run (BLOCK/BLOCK:A or :B, as results name them; repeatable): "
-                  "the next mechanism's capacity where two are near-tied (dem/README.md, \"Branches\")");
+                  "the next mechanism's capacity where two are near-tied (dem/README.md, \"The branch X\")");
     settings->add(sub, "--sliding", "prd.sliding_check", K::flag,
                   "Sliding check on every step: friction demand of the joint forces and the least friction angle "
                   "an admissible force state needs (results: extra \"sliding\")");

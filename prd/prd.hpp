@@ -38,7 +38,7 @@ PrdCheck prd_check(const Case& c, double contact_tolerance);
 // the initial configuration, with the corners named in `held_closed` ("BLOCK/BLOCK:A" or ":B",
 // the joint's blocks in the order the results name them) kept closed. Comparing the potential
 // energy it releases with and without a hinge held closed measures how near the next-best
-// mechanism is (dem/README.md, "Branches"). Throws std::runtime_error naming an unknown corner.
+// mechanism is (dem/README.md, "The branch X"). Throws std::runtime_error naming an unknown corner.
 struct FirstStep {
   bool bounded = false;        // false: the structure collapses at d = 0 (the LP is unbounded)
   double energy_change = 0.0;  // J: potential energy of the loads over the step (negative: released)
