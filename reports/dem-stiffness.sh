@@ -6,8 +6,9 @@
 #
 #   bash reports/dem-stiffness.sh [JOBS]   # JOBS runs at a time (default 2)
 #
-# Cost (2026-11-25, CPU of one core each): about 1 (x1/10), 1.5, 2.5, 5, @X10MIN@ and @X30MIN@ minutes (x30):
-# the time step goes as 1/sqrt(kn). The runs go to $WORK (default out/stiffness/, not checked in); its
+# Cost (2026-11-25, CPU of one core each): about 1 (x1/10), 1.5, 2.5, 5, 10 and 14 minutes (x30,
+# which ends undecided: its collapse creeps for longer than the 30 s hold cap); the time step goes
+# as 1/sqrt(kn). The runs go to $WORK (default out/stiffness/, not checked in); its
 # default and x3 runs are the same settings as the convergence study's default and stiffer-joints.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -15,8 +16,12 @@ masonry=${MASONRY:-build/app/masonry}
 jobs=${1:-2}
 work=${WORK:-out/stiffness}
 mkdir -p reports/dem-stiffness
+status=0
 for name in cathedral-settlement; do
-  "$masonry" dem cases/$name.json --stiffness-study --jobs "$jobs" --out "$work/$name" || exit 1
+  # Exit code 1 when a run ends without a located collapse: the study is written all the same.
+  "$masonry" dem cases/$name.json --stiffness-study --jobs "$jobs" --out "$work/$name" || status=$?
+  [ -f "$work/$name/stiffness.md" ] || exit "$status"
   cp "$work/$name/stiffness.md" "reports/dem-stiffness/$name.md"
   cp "$work/$name/stiffness.json" "reports/dem-stiffness/$name.json"
 done
+exit "$status"
