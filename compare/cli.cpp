@@ -177,7 +177,7 @@ void add_common_options(CLI::App* sub, CompareOpts& o) {
                  "DEM: every block's kinetic energy limit while the supports move, over its weight x support travel (dem/README.md, \"The loading rate\")");
   o.settings.add(sub, "--hold", "prd.hold_closed", K::texts,
                  "PRD: keep this joint corner closed over the whole run (BLOCK/BLOCK:A; repeatable), to follow a second mechanism "
-                 "(dem/README.md, \"Branches\")");
+                 "(dem/README.md, \"The branch X\")");
   sub->add_option("--frames", o.frames, "Slider positions in report.html (default 60, 24 for scenes over 60 blocks)")->check(CLI::NonNegativeNumber);
   sub->add_option("--tolerances", o.tolerances, "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true}: exit code 1 when one is exceeded");
   sub->add_option("--notes", o.notes,
