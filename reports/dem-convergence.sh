@@ -5,9 +5,9 @@
 #
 #   bash reports/dem-convergence.sh [JOBS]   # JOBS runs at a time (default 2)
 #
-# Cost (2026-11-24): the pointed arch about a CPU minute; the rotation scene 8 runs of 1-6 CPU
-# minutes, the settlement scene 8 runs of 3-15 (the half time step and the stiffer joints are the
-# slow ones), so about an hour on 2 cores for both. The runs go to $WORK (default out/convergence/, not checked in); each default run is the
+# Cost (2026-11-25): the pointed arch about a CPU minute; the rotation scene 9 runs of 1-2 CPU
+# minutes, the settlement scene 9 runs of 1.5-5 (the half time step and the stiffer joints are the
+# slow ones), so about 20 minutes on 2 cores for all three. The runs go to $WORK (default out/convergence/, not checked in); each default run is the
 # DEM run of the matching reports/compare-<case>/ (bash reports/regenerate.sh --render redraws
 # those from it after copying it there). Exit code 1 when a study is not shown converged.
 set -uo pipefail

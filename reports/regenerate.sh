@@ -2,7 +2,7 @@
 # Rebuilds the PRD-against-DEM reports of the three standard cases at the paper's friction angle
 # (35 degrees) into reports/compare-<case>/, each checked against reports/paper-tolerances.json.
 #
-#   bash reports/regenerate.sh            # runs PRD and DEM again (the cathedrals' DEM runs take 3-10 CPU minutes each)
+#   bash reports/regenerate.sh            # runs PRD and DEM again (the cathedrals' DEM runs take 1-2.5 CPU minutes each, 2026-11-25)
 #   bash reports/regenerate.sh --render   # only redraws the reports from the results already there
 #
 # Uses build/app/masonry (override with MASONRY=path). A case that exceeds a limit still gets
