@@ -307,8 +307,9 @@ void DemModel::Impl::contact_forces() {
     // once the hinge has opened about that far; each flip changed the id and dropped the
     // point's shear, and the nave's springing on the settlement cathedral lost 3.2e5 N (|T|/N
     // 0.23, far from friction) every 40 ms and slid some 11 um after each loss, a creep no
-    // friction law allows (dem/README.md, "Shear history"). The two points of a manifold are a
-    // clipped joint apart, so a quarter of it never pairs a point with the other end's.
+    // friction law allows (dem/README.md, "Shear history follows the contact, not the id").
+    // The two points of a manifold are a clipped joint apart, so a quarter of it never pairs a
+    // point with the other end's.
     const double same_point = 0.25 * std::max(m.clip_length, 0.1 * margin);
     for (int i = 0; i < m.count; ++i) {
       const dem::ManifoldPoint& mp = m.points[i];

@@ -3,13 +3,13 @@
 // touching corner by e, the separating-axis search prefers the other block's face as soon as
 // theta e exceeds Box2D's bias (0.1 b2_linearSlop = 0.5 mm), so the reference face, and with it
 // the id, flips with the hinge's angle while the contact stays where it was. Dropping the shear
-// at each flip is a slip that no friction law allows (dem/README.md, "Shear history").
+// at each flip is a slip that no friction law allows (dem/README.md, "Shear history follows the
+// contact, not the id").
 #include <gtest/gtest.h>
 
 #include <box2d/b2_common.h>
 
 #include <cmath>
-#include <set>
 #include <string>
 #include <vector>
 
