@@ -179,7 +179,7 @@ void add_common_options(CLI::App* sub, CompareOpts& o) {
                  "PRD: keep this joint corner closed over the whole run (BLOCK/BLOCK:A; repeatable), to follow a second mechanism "
                  "(dem/README.md, \"The branch X\")");
   sub->add_option("--frames", o.frames, "Slider positions in report.html (default 60, 24 for scenes over 60 blocks)")->check(CLI::NonNegativeNumber);
-  sub->add_option("--tolerances", o.tolerances, "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true}: exit code 1 when one is exceeded");
+  sub->add_option("--tolerances", o.tolerances, "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true, \"hinge_shift\": 1}: exit code 1 when one is exceeded");
   sub->add_option("--notes", o.notes,
                   "Plain-text file of the author's notes on the result (paragraphs separated by blank lines), shown after the "
                   "tolerance checks, e.g. the mechanical reason a check fails");

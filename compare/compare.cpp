@@ -41,38 +41,45 @@ double interp(const std::vector<double>& x, const std::vector<double>& y, double
   return y[k - 1] + t * (y[k] - y[k - 1]);
 }
 
-// Hinges as (unordered block pair, point) for matching across runs whose joint numbering may
-// differ: two hinges are the same when they join the same blocks at the same corner.
-bool same_hinges(const std::vector<Hinge>& a, const std::vector<Hinge>& b, const std::vector<int>* mirror, double xc,
-                 double tol) {
-  if (a.size() != b.size()) return false;
-  std::vector<bool> used(b.size(), false);
-  for (const Hinge& h : a) {
-    int i = h.i, j = h.j;
-    Vec2 p = h.point;
+// Fewest ring steps from hinge h of run r to one of `others` (of the other run) at the same
+// blocks and corner, -1 beyond kMaxHingeShift. Matching is by (unordered block pair, corner
+// point), so the runs' joint numbering need not agree. With `mirror`, h's places are mapped
+// through the mirror image about x = xc first.
+int ring_distance(const Case& c, const RunResult& r, const Hinge& h, const std::vector<Hinge>& others, const std::vector<int>* mirror,
+                  double xc, double tol) {
+  for (const RingSpot& s : ring_neighbours(c, r, h.joint, h.corner, kMaxHingeShift)) {  // nearest first
+    const JointInfo& ji = r.joints[size_t(s.joint)];
+    int i = ji.i, j = ji.j;
+    Vec2 p = s.corner == 0 ? ji.a : ji.b;
     if (mirror) {
-      i = (*mirror)[i];
-      j = (*mirror)[j];
+      i = (*mirror)[size_t(i)];
+      j = (*mirror)[size_t(j)];
       p.x() = 2 * xc - p.x();
     }
-    bool found = false;
-    for (size_t k = 0; k < b.size() && !found; ++k) {
-      if (used[k]) continue;
-      const Hinge& g = b[k];
-      const bool pair = (g.i == i && g.j == j) || (g.i == j && g.j == i);
-      if (pair && (g.point - p).norm() <= tol) used[k] = found = true;
-    }
-    if (!found) return false;
+    for (const Hinge& g : others)
+      if (((g.i == i && g.j == j) || (g.i == j && g.j == i)) && (g.point - p).norm() <= tol) return s.steps;
   }
-  return true;
+  return -1;
 }
 
-// Whether `hs` has a hinge at the same blocks and corner as `h`.
-bool contains_hinge(const std::vector<Hinge>& hs, const Hinge& h) {
-  for (const Hinge& g : hs)
-    if (((g.i == h.i && g.j == h.j) || (g.i == h.j && g.j == h.i)) && (g.point - h.point).norm() <= 1e-9 * (1 + h.point.norm()))
-      return true;
-  return false;
+// Fewest joints some hinge must move along its ring for two hinge sets to agree (every hinge of
+// either run has one of the other's within that many joints), -1 beyond kMaxHingeShift. With
+// `mirror`, b's hinges are compared with the mirror images of a's.
+int hinge_set_shift(const Case& c, const RunResult& ra, const RunResult& rb, const std::vector<Hinge>& a, const std::vector<Hinge>& b,
+                    const std::vector<int>* mirror, double xc, double tol) {
+  int worst = 0;
+  for (const Hinge& h : a) {
+    const int n = ring_distance(c, ra, h, b, mirror, xc, tol);
+    if (n < 0) return -1;
+    worst = std::max(worst, n);
+  }
+  // The mirror map is its own inverse: b's places mirrored are compared with a's hinges.
+  for (const Hinge& g : b) {
+    const int n = ring_distance(c, rb, g, a, mirror, xc, tol);
+    if (n < 0) return -1;
+    worst = std::max(worst, n);
+  }
+  return worst;
 }
 
 void bbox(const Case& c, Vec2& lo, Vec2& hi) {
@@ -204,6 +211,44 @@ double settled_gap(const RunResult& r) {
     for (const OpenCorner& o : r.steps.front().open_corners)
       if (std::isfinite(o.gap)) g = std::max(g, o.gap);
   return g;
+}
+
+std::string joints_text(int n) { return std::to_string(n) + (n == 1 ? " joint" : " joints"); }
+
+std::vector<RingSpot> ring_neighbours(const Case& c, const RunResult& r, int joint, int corner, int shift) {
+  std::vector<RingSpot> out;
+  if (joint < 0 || joint >= int(r.joints.size())) return out;
+  const int nb = int(c.blocks.size());
+  std::vector<std::vector<int>> joints_of(c.blocks.size());
+  for (size_t k = 0; k < r.joints.size(); ++k)
+    for (int b : {r.joints[k].i, r.joints[k].j})
+      if (b >= 0 && b < nb) joints_of[size_t(b)].push_back(int(k));
+  std::vector<bool> seen(r.joints.size(), false);
+  seen[size_t(joint)] = true;
+  out.push_back({joint, corner, 0});
+  // Breadth first, so spots come nearest first.
+  for (size_t q = 0; q < out.size(); ++q) {
+    const RingSpot cur = out[q];  // a copy: out grows below
+    if (cur.steps >= shift) continue;
+    const JointInfo& from = r.joints[size_t(cur.joint)];
+    const Vec2 m1 = 0.5 * (from.a + from.b);
+    const Vec2 p1 = cur.corner == 0 ? from.a : from.b;
+    for (int blk : {from.i, from.j}) {
+      if (blk < 0 || blk >= nb || c.blocks[size_t(blk)].support || joints_of[size_t(blk)].size() != 2) continue;
+      const int next = joints_of[size_t(blk)][0] == cur.joint ? joints_of[size_t(blk)][1] : joints_of[size_t(blk)][0];
+      if (seen[size_t(next)]) continue;
+      const JointInfo& to = r.joints[size_t(next)];
+      // The side of the line from this joint's midpoint to the next one's.
+      const Vec2 u = 0.5 * (to.a + to.b) - m1;
+      const auto side = [&](const Vec2& p) { return u.x() * (p.y() - m1.y()) - u.y() * (p.x() - m1.x()); };
+      const double s1 = side(p1), sa = side(to.a), sb = side(to.b);
+      const int nc = s1 * sa >= s1 * sb ? 0 : 1;
+      if (!(s1 * (nc == 0 ? sa : sb) > 0)) continue;  // no corner clearly on that side
+      seen[size_t(next)] = true;
+      out.push_back({next, nc, cur.steps + 1});
+    }
+  }
+  return out;
 }
 
 std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord& s, double min_opening) {
@@ -402,8 +447,13 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
       // be invisible in the DEM.
       h.a = hinges_of(c, a, *sa, k.hinge_gap);
       h.b = hinges_of(c, b, *sb, k.hinge_gap);
-      h.match = same_hinges(h.a, h.b, nullptr, xc, tol);
-      h.mirror = !h.match && k.symmetric && same_hinges(h.a, h.b, &mirror, xc, tol);
+      for (Hinge& x : h.a) x.apart = ring_distance(c, a, x, h.b, nullptr, xc, tol);
+      for (Hinge& x : h.b) x.apart = ring_distance(c, b, x, h.a, nullptr, xc, tol);
+      const int direct = hinge_set_shift(c, a, b, h.a, h.b, nullptr, xc, tol);
+      const int mirrored = k.symmetric ? hinge_set_shift(c, a, b, h.a, h.b, &mirror, xc, tol) : -1;
+      h.match = direct == 0;
+      h.mirror = !h.match && mirrored == 0;
+      h.shift = direct < 0 ? mirrored : mirrored < 0 ? direct : std::min(direct, mirrored);
       k.hinges.push_back(std::move(h));
     }
   }
@@ -442,14 +492,17 @@ ojson to_json(const Comparison& k) {
   j["thrust"] = t;
   ojson hc = ojson::array();
   for (const HingeCheck& h : k.hinges) {
-    ojson ha = ojson::array(), hb = ojson::array(), oa = ojson::array(), ob = ojson::array();
+    ojson ha = ojson::array(), hb = ojson::array(), oa = ojson::array(), ob = ojson::array(), pa = ojson::array(), pb = ojson::array();
+    const auto apart = [](int n) { return n < 0 ? ojson(nullptr) : ojson(n); };
     for (const Hinge& x : h.a) {
       ha.push_back(x.label);
       oa.push_back(json_number(x.opening));
+      pa.push_back(apart(x.apart));
     }
     for (const Hinge& x : h.b) {
       hb.push_back(x.label);
       ob.push_back(json_number(x.opening));
+      pb.push_back(apart(x.apart));
     }
     hc.push_back({{"d", json_number(h.d)},
                   {"d_a", json_number(h.d_a)},
@@ -458,10 +511,13 @@ ojson to_json(const Comparison& k) {
                   {"b", hb},
                   {"a_opening", oa},
                   {"b_opening", ob},
+                  {"a_joints_apart", pa},
+                  {"b_joints_apart", pb},
                   {"match", h.match},
-                  {"mirror", h.mirror}});
+                  {"mirror", h.mirror},
+                  {"joints_apart", apart(h.shift)}});
   }
-  j["hinges"] = {{"symmetric", k.symmetric}, {"min_opening", json_number(k.hinge_gap)}, {"checks", hc}};
+  j["hinges"] = {{"symmetric", k.symmetric}, {"min_opening", json_number(k.hinge_gap)}, {"max_joints_apart", kMaxHingeShift}, {"checks", hc}};
   j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }
@@ -482,17 +538,21 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
   }
   if (t.hinges) {
     if (k.hinges.empty()) out.push_back("hinges: no common range to compare hinge locations on");
+    const std::string why = t.hinge_shift == 0 ? (k.symmetric ? " (not mirror images either)" : "")
+                                               : " (none within " + joints_text(t.hinge_shift) + " of the other's along a ring" +
+                                                     (k.symmetric ? ", nor as mirror images)" : ")");
     for (const HingeCheck& h : k.hinges) {
-      if (h.ok()) continue;
-      // Name only the hinges that differ: a cathedral has a dozen, most of them shared.
+      if (h.ok(t.hinge_shift)) continue;
+      // Name only the hinges without a partner: a cathedral has a dozen, most of them shared.
       // With their openings since d = 0, so a hinge just past the threshold reads as such.
-      std::string la, lb;
-      for (const Hinge& x : h.a)
-        if (!contains_hinge(h.b, x)) la += (la.empty() ? "" : ", ") + x.label + " (" + fmt(x.opening * 1e3, 2) + " mm)";
-      for (const Hinge& x : h.b)
-        if (!contains_hinge(h.a, x)) lb += (lb.empty() ? "" : ", ") + x.label + " (" + fmt(x.opening * 1e3, 2) + " mm)";
-      out.push_back("hinges: at d = " + fmt(h.d) + " m only " + k.a.label + " has {" + la + "}, only " + k.b.label + " has {" + lb +
-                    "}" + (k.symmetric ? " (not mirror images either)" : ""));
+      const auto alone = [&](const std::vector<Hinge>& hs) {
+        std::string l;
+        for (const Hinge& x : hs)
+          if (x.apart < 0 || x.apart > t.hinge_shift) l += (l.empty() ? "" : ", ") + x.label + " (" + fmt(x.opening * 1e3, 2) + " mm)";
+        return l;
+      };
+      out.push_back("hinges: at d = " + fmt(h.d) + " m only " + k.a.label + " has {" + alone(h.a) + "}, only " + k.b.label + " has {" +
+                    alone(h.b) + "}" + why);
     }
   }
   return out;
@@ -517,10 +577,14 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
     } else if (key == "hinges") {
       if (!v.is_boolean()) throw std::runtime_error(source + ": \"hinges\" must be true or false");
       t.hinges = v.get<bool>();
+    } else if (key == "hinge_shift") {
+      if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > kMaxHingeShift)
+        throw std::runtime_error(source + ": \"hinge_shift\" must be a whole number of joints from 0 to " + std::to_string(kMaxHingeShift));
+      t.hinge_shift = int(v.get<long long>());
     } else if (key == "comment" || key == "description") {
       // free text for people
     } else {
-      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, thrust, hinges, comment)");
+      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, thrust, hinges, hinge_shift, comment)");
     }
   }
   return t;

@@ -19,8 +19,16 @@ struct Tolerances {
   std::optional<double> capacity;  // largest |cap_b - cap_a| / |cap_a|
   std::optional<double> thrust;    // largest |reaction component difference| / total weight
   bool hinges = false;             // hinge locations must match (or mirror-match) at every check
+  // How many joints along a ring a hinge may sit from the other run's (0: the same joint). Where
+  // the thrust line runs along a ring's edge over several voussoirs, which of their joints
+  // opens is not decided by the mechanics: PRD itself moves such hinges by a joint when its step
+  // is halved (compare/README.md, "Hinges one joint apart").
+  int hinge_shift = 0;
 };
-// Parses {"capacity": 0.05, "thrust": 0.10, "hinges": true}; unknown keys and wrong types throw
+// The largest hinge_shift looked for (HingeCheck::shift is -1 beyond it).
+inline constexpr int kMaxHingeShift = 3;
+// Parses {"capacity": 0.05, "thrust": 0.10, "hinges": true, "hinge_shift": 1}; unknown keys and
+// wrong types throw
 // std::runtime_error naming the file and the key.
 Tolerances parse_tolerances(const std::string& text, const std::string& source);
 Tolerances load_tolerances(const std::string& path);
@@ -33,6 +41,9 @@ struct Hinge {
   std::string label;     // "v3/v4:A", corner_name (block ids: case text, escape before display)
   Vec2 point{0, 0};      // the closed corner, initial configuration
   double opening = 0.0;  // m, the open corner's gap beyond its gap in the run's first record
+  // Fewest joints along a ring to a hinge of the other run turning about the same side (0: the
+  // same joint), -1 when none is within kMaxHingeShift. Set by compare_runs (not mirrored).
+  int apart = -1;
 };
 
 struct HingeCheck {
@@ -41,7 +52,10 @@ struct HingeCheck {
   std::vector<Hinge> a, b;
   bool match = false;          // same hinges
   bool mirror = false;         // b's hinges are the mirror image of a's (symmetric scenes only)
-  bool ok() const { return match || mirror; }
+  // Fewest joints along a ring that some hinge must move for the two sets to agree, directly or
+  // as mirror images: 0 when they match or mirror-match, -1 when more than kMaxHingeShift.
+  int shift = -1;
+  bool ok(int allowed_shift = 0) const { return shift >= 0 && shift <= allowed_shift; }
 };
 
 // Horizontal (H = Fx / W) and vertical (V = Fy / W) reaction of one support against d, for both
@@ -109,6 +123,18 @@ double record_step(const std::vector<const StepRecord*>& recs);
 // gap smaller than this is not told apart from elastic redistribution. PRD's rigid blocks settle
 // with no gap: 0.
 double settled_gap(const RunResult& r);
+// Where a hinge may move along a ring: the joint corners reachable from `joint`'s `corner` (the
+// one it turns about) in at most `shift` steps, each step crossing a ring block (a free block
+// with exactly two joints, a voussoir or a course) to its other joint and keeping to the same
+// side of the ring (the corner on the same side of the line joining the two joints' midpoints).
+// Blocks where rings branch (a pier carrying a flyer) and supports are not crossed. Returns
+// (joint, corner, steps), the start first.
+struct RingSpot {
+  int joint = -1, corner = 0, steps = 0;
+};
+std::vector<RingSpot> ring_neighbours(const Case& c, const RunResult& r, int joint, int corner, int shift);
+// "1 joint", "2 joints": a shift along a ring as messages and reports write it.
+std::string joints_text(int n);
 // Hinges of one record (joint with exactly one open corner), sorted by joint. With min_opening >
 // 0 a corner counts as open only when its gap exceeds its gap in the run's first record (the
 // settled state) by more than min_opening: the hinges the support motion opens.

@@ -39,6 +39,22 @@ ojson parting_json(const std::optional<Parting>& p) {
           {"at_end", {{"d", p->end_d}, {"only_this", p->end_only_a}, {"only_other", p->end_only_b}}}};
 }
 
+// How many of the hinge checks of PRD against a run (compare_runs, five values of d) find the
+// same joints, and how many find them within one joint along a ring (compare/README.md,
+// "Hinges one joint apart").
+struct HingeTally {
+  int checks = 0, same = 0, within_one = 0;
+};
+std::optional<HingeTally> hinge_tally(const Convergence& c, const RunResult& r) {
+  if (!c.scene || !c.prd || !located(r.status)) return std::nullopt;
+  HingeTally t;
+  for (const HingeCheck& h : compare_runs(*c.scene, *c.prd, r).hinges) {
+    ++t.checks;
+    t.same += h.ok(0);
+    t.within_one += h.ok(1);
+  }
+  return t;
+}
 
 }  // namespace
 
@@ -106,6 +122,8 @@ ojson convergence_json(const Convergence& c) {
     r["cycles"] = e.run.timing.cycles;
     r["message"] = e.run.message;
     r["kn"] = e.run.settings.contains("kn") ? e.run.settings["kn"] : ojson(nullptr);
+    if (const std::optional<HingeTally> h = hinge_tally(c, e.run))
+      r["hinges_against_prd"] = {{"checks", h->checks}, {"same_joints", h->same}, {"within_one_joint", h->within_one}};
     if (c.scene && c.study == Study::stiffness && c.prd) r["parts_from_prd"] = parting_json(parting(c, e.run, *c.prd));
     else if (c.scene && &e != &c.entries.front()) r["parts_from_default"] = parting_json(parting(c, e.run, c.entries.front().run));
     runs.push_back(r);
@@ -137,6 +155,11 @@ std::string convergence_markdown(const Convergence& c) {
     t.head.insert(t.head.begin() + 2, "kn (Pa/m)");
     t.align.insert(t.align.begin() + 2, Align::right);
   }
+  const bool tally = c.scene && c.prd;
+  if (tally) {
+    t.head.insert(t.head.end() - 2, "hinges as PRD's");
+    t.align.insert(t.align.end() - 2, Align::right);
+  }
   const double base = c.entries.empty() ? NAN : c.entries.front().run.capacity;
   for (const ConvergenceEntry& e : c.entries) {
     const bool ok = located(e.run.status);
@@ -149,8 +172,17 @@ std::string convergence_markdown(const Convergence& c) {
       const double kn = e.run.settings.value("kn", NAN);
       t.rows.back().insert(t.rows.back().begin() + 2, fmt::number(kn, "%.3g", kn));
     }
+    if (tally) {
+      const std::optional<HingeTally> h = hinge_tally(c, e.run);
+      t.rows.back().insert(t.rows.back().end() - 2, h ? std::to_string(h->same) + " (" + std::to_string(h->within_one) + ") / " +
+                                                            std::to_string(h->checks)
+                                                      : std::string("n/a"));
+    }
   }
   d.table(std::move(t));
+  if (tally)
+    d.paragraph({"Hinges as PRD's: of the five hinge checks of PRD against the run (compare/README.md, \"Hinges\"), how many find the "
+                 "same joints and, in brackets, the same joints or a neighbour along the ring (\"Hinges one joint apart\")."});
   // "The default" is the case's settings as the command changed them (a stiffness, a hold cap,
   // a number of increments): the settings its run recorded make the study reproducible.
   if (!c.entries.empty() && !c.entries.front().run.settings.empty())

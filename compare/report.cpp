@@ -33,6 +33,10 @@ Panel panel(const ReportRun& rr, const StepRecord* s, double d) {
   return p;
 }
 
+// How many joints along a ring a hinge may move and still count as the same: the tolerances'
+// hinge_shift when they are checked, else 0 (the same joint).
+int allowed_shift(const Report& r) { return r.tolerances_checked ? r.tolerances.hinge_shift : 0; }
+
 // Each hinge with how far it has opened since d = 0 (mm), so a reader tells a hinge of the
 // mechanism from one just past the threshold.
 std::string hinge_list(const std::vector<Hinge>& hs) {
@@ -137,6 +141,7 @@ ojson report_json(const Report& r) {
       lim["capacity"] = r.tolerances.capacity ? json_number(*r.tolerances.capacity) : ojson(nullptr);
       lim["thrust"] = r.tolerances.thrust ? json_number(*r.tolerances.thrust) : ojson(nullptr);
       lim["hinges"] = r.tolerances.hinges;
+      lim["hinge_shift"] = r.tolerances.hinge_shift;
       c["tolerances"] = {{"limits", lim}, {"pass", r.violations[k].empty()}, {"violations", r.violations[k]}};
     }
     cs.push_back(c);
@@ -181,7 +186,7 @@ Table headline(const Report& r) {
     tmax.push_back(fmt::g(k.thrust_max_diff));
     trms.push_back(fmt::g(k.thrust_rms_diff));
     int ok = 0;
-    for (const HingeCheck& h : k.hinges) ok += h.ok();
+    for (const HingeCheck& h : k.hinges) ok += h.ok(allowed_shift(r));
     hinges.push_back(std::to_string(ok) + " / " + std::to_string(k.hinges.size()));
     ratio_.push_back(ratio(k.time_ratio));
   }
@@ -203,7 +208,10 @@ void tolerance_section(Document& d, const Report& r) {
   d.heading(2, {"Tolerance checks"});
   d.paragraph({"Limits: capacity " + (r.tolerances.capacity ? fmt::g(*r.tolerances.capacity * 100) + "%" : std::string("not checked")) +
                ", thrust " + (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) + ", hinges " +
-               (r.tolerances.hinges ? "must match" : "not checked") + "."});
+               (!r.tolerances.hinges            ? std::string("not checked")
+                : r.tolerances.hinge_shift == 0 ? std::string("must match")
+                                                 : "must match within " + joints_text(r.tolerances.hinge_shift) + " along a ring") +
+               "."});
   std::vector<Item> items;
   for (size_t k = 0; k < r.comparisons.size(); ++k) {
     Item it{{r.comparisons[k].a.label + " against " + r.comparisons[k].b.label + ": ",
@@ -308,7 +316,11 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   d.paragraph({"A hinge is a joint with exactly one open corner; listed as ", Cell("block/block:corner", CellStyle::code),
                std::string(" (the joint's two blocks and the corner, A or B, it turns about) with, in brackets, how far its open "
                            "corner has opened since d = 0, in mm. ") +
-                   (cmp.symmetric ? "The scene is symmetric, so a mirror image counts as a match." : "The scene is not symmetric.")});
+                   (cmp.symmetric ? "The scene is symmetric, so a mirror image counts as a match." : "The scene is not symmetric.") +
+                   (allowed_shift(r) > 0 ? " A hinge within " + joints_text(allowed_shift(r)) +
+                                               " of the other run's along a ring, turning about the same side, counts as the same "
+                                               "(the tolerances' hinge_shift; compare/README.md, \"Hinges one joint apart\")."
+                                         : std::string())});
   d.paragraph({"Joints open at d = 0, before any support motion (the settled crack pattern; a DEM's later hinges are measured from its gaps there):"});
   d.list(settled_cracks(r));
   if (cmp.hinge_gap > 0)
@@ -320,9 +332,15 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   Table h;
   h.head = {"d (mm)", cmp.a.label, cmp.b.label, "agree"};
   h.align = {Align::right, Align::left, Align::left, Align::left};
-  for (const HingeCheck& x : cmp.hinges)
+  for (const HingeCheck& x : cmp.hinges) {
+    const std::string apart = x.shift > 0 ? joints_text(x.shift) + " apart" : std::string();
     h.rows.push_back({fmt::mm(x.d), hinge_list(x.a), hinge_list(x.b),
-                      x.match ? Cell("yes") : x.mirror ? Cell("mirror image") : Cell("no", CellStyle::strong)});
+                      x.match                   ? Cell("yes")
+                      : x.mirror                ? Cell("mirror image")
+                      : x.ok(allowed_shift(r)) ? Cell("yes, " + apart)
+                      : x.shift > 0             ? Cell("no (" + apart + ")", CellStyle::strong)
+                                                : Cell("no", CellStyle::strong)});
+  }
   d.table(std::move(h));
   // Static drawings at chosen steps: the Markdown's; the page has the slider instead.
   d.heading(3, {"The structure at chosen steps"}).last().medium = Medium::markdown;
