@@ -43,6 +43,19 @@ struct DemSnapshot {
 };
 
 // The simulator: build it from a case, then place the supports and cycle.
+// The normal gap at one joint corner, m, from the two blocks' copies of it (world frame: pi on
+// block i, pj on block j) and their outward joint normals (ni of i, nj of j): the smaller of the
+// two copies' stand-off from the other block's face (negative: overlap). A corner is open only
+// when neither block touches the other there. A joint corner is a corner of at least one of its
+// blocks; where the other block's face runs on past it (a pier's top under a voussoir), that
+// block's copy is a point of its face, which slides away under the turning corner as the joint
+// slips, and its stand-off from the turned face is slip x sin(theta), not an opening: 12-25 um at
+// the settlement cathedral's springing hinge with joints 30 times stiffer (0.2-0.3 mm of slip at
+// 60-80 mrad) while the voussoir's corner pressed into the pier by 2.7 um (dem/README.md,
+// "Hinges: measured from the settled state"). A real opening stands both copies off by the same
+// amount to within that term.
+double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj);
+
 class DemModel {
  public:
   // Throws std::runtime_error for settings it cannot run with (e.g. an unstable time step).
@@ -96,8 +109,7 @@ class DemModel {
   // Back to a saved state of this model (the cycle count and the timing keep counting).
   void restore(const DemSnapshot& s);
 
-  // Normal gap of each joint corner (A then B per joint), m: the larger of the two blocks' copies
-  // of the corner standing off the other block's face (negative: overlap).
+  // Normal gap of each joint corner (A then B per joint), m (corner_gap; negative: overlap).
   std::vector<double> corner_gaps(const std::vector<Interface>& joints) const;
   // The current state as a step record (poses, reactions, open corners, joint forces, energy).
   // A corner is open when its gap exceeds open_gap beyond `gap_reference` (its gap in the

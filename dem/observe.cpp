@@ -144,6 +144,8 @@ void DemModel::restore(const DemSnapshot& snap) {
   m.transform_pieces(true);
 }
 
+double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj) { return std::min((pj - pi).dot(ni), (pi - pj).dot(nj)); }
+
 std::vector<double> DemModel::corner_gaps(const std::vector<Interface>& joints) const {
   const Impl& m = *p_;
   std::vector<double> g;
@@ -154,7 +156,7 @@ std::vector<double> DemModel::corner_gaps(const std::vector<Interface>& joints) 
     for (int corner = 0; corner < 2; ++corner) {
       const Vec2 P = corner == 0 ? J.a : J.b;
       const Vec2 pi = m.pos[J.i] + rotate(P - m.c0[J.i], ci, si), pj = m.pos[J.j] + rotate(P - m.c0[J.j], cj, sj);
-      g.push_back(std::max((pj - pi).dot(ni), (pi - pj).dot(nj)));
+      g.push_back(corner_gap(pi, ni, pj, nj));
     }
   }
   return g;
@@ -234,8 +236,9 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
       joint_frame(J, f.n, t);
       r.forces.push_back(f);
     }
-    // A corner is open when either block's copy of it stands off the other block's face by more
-    // than open_gap beyond its gap in the reference state (a settled gap is not a hinge).
+    // A corner is open when both blocks' copies of it stand off the other block's face
+    // (corner_gap) by more than open_gap beyond its gap in the reference state (a settled gap is
+    // not a hinge).
     bool cracked = false;
     for (int corner = 0; corner < 2; ++corner) {
       const double gap = gaps[2 * k + corner];
