@@ -28,8 +28,7 @@ struct Tolerances {
 // The largest hinge_shift looked for (HingeCheck::shift is -1 beyond it).
 inline constexpr int kMaxHingeShift = 3;
 // Parses {"capacity": 0.05, "thrust": 0.10, "hinges": true, "hinge_shift": 1}; unknown keys and
-// wrong types throw
-// std::runtime_error naming the file and the key.
+// wrong types throw std::runtime_error naming the file and the key.
 Tolerances parse_tolerances(const std::string& text, const std::string& source);
 Tolerances load_tolerances(const std::string& path);
 
@@ -123,15 +122,16 @@ double record_step(const std::vector<const StepRecord*>& recs);
 // gap smaller than this is not told apart from elastic redistribution. PRD's rigid blocks settle
 // with no gap: 0.
 double settled_gap(const RunResult& r);
-// Where a hinge may move along a ring: the joint corners reachable from `joint`'s `corner` (the
-// one it turns about) in at most `shift` steps, each step crossing a ring block (a free block
-// with exactly two joints, a voussoir or a course) to its other joint and keeping to the same
-// side of the ring (the corner on the same side of the line joining the two joints' midpoints).
-// Blocks where rings branch (a pier carrying a flyer) and supports are not crossed. Returns
-// (joint, corner, steps), the start first.
+// A joint corner a hinge may move to, `steps` joints along its ring from where it is.
 struct RingSpot {
   int joint = -1, corner = 0, steps = 0;
 };
+// Where a hinge may move along a ring: the joint corners reachable from `joint`'s `corner` (the
+// one it turns about) in at most `shift` steps, nearest first, the start itself first. A step
+// crosses a ring block (a free block with exactly two joints, a voussoir or a course) to its
+// other joint and keeps to the same side of the ring (the corner on the same side of the line
+// joining the two joints' midpoints). Blocks where rings branch (a pier carrying a flyer) and
+// supports are not crossed.
 std::vector<RingSpot> ring_neighbours(const Case& c, const RunResult& r, int joint, int corner, int shift);
 // "1 joint", "2 joints": a shift along a ring as messages and reports write it.
 std::string joints_text(int n);

@@ -42,7 +42,6 @@ struct DemSnapshot {
   std::shared_ptr<const Data> data;
 };
 
-// The simulator: build it from a case, then place the supports and cycle.
 // The normal gap at one joint corner, m, from the two blocks' copies of it (world frame: pi on
 // block i, pj on block j) and their outward joint normals (ni of i, nj of j): the smaller of the
 // two copies' stand-off from the other block's face (negative: overlap). A corner is open only
@@ -56,6 +55,7 @@ struct DemSnapshot {
 // amount to within that term.
 double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj);
 
+// The simulator: build it from a case, then place the supports and cycle.
 class DemModel {
  public:
   // Throws std::runtime_error for settings it cannot run with (e.g. an unstable time step).
