@@ -62,23 +62,18 @@ int ring_distance(const Case& c, const RunResult& r, const Hinge& h, const std::
   return -1;
 }
 
-// Fewest joints some hinge must move along its ring for two hinge sets to agree (every hinge of
-// either run has one of the other's within that many joints), -1 beyond kMaxHingeShift. With
-// `mirror`, b's hinges are compared with the mirror images of a's.
-int hinge_set_shift(const Case& c, const RunResult& ra, const RunResult& rb, const std::vector<Hinge>& a, const std::vector<Hinge>& b,
-                    const std::vector<int>* mirror, double xc, double tol) {
+// Two hinge sets agree within n joints when every hinge of either run has one of the other's
+// within n: the set's shift is the largest distance, -1 when some hinge has none within
+// kMaxHingeShift.
+int worst_of(int worst, int n) { return worst < 0 || n < 0 ? -1 : std::max(worst, n); }
+
+// The shift of two hinge sets as mirror images: a's places mirrored meet b's hinges, b's meet
+// a's (the mirror map is its own inverse).
+int mirrored_shift(const Case& c, const RunResult& ra, const RunResult& rb, const std::vector<Hinge>& a, const std::vector<Hinge>& b,
+                   const std::vector<int>& mirror, double xc, double tol) {
   int worst = 0;
-  for (const Hinge& h : a) {
-    const int n = ring_distance(c, ra, h, b, mirror, xc, tol);
-    if (n < 0) return -1;
-    worst = std::max(worst, n);
-  }
-  // The mirror map is its own inverse: b's places mirrored are compared with a's hinges.
-  for (const Hinge& g : b) {
-    const int n = ring_distance(c, rb, g, a, mirror, xc, tol);
-    if (n < 0) return -1;
-    worst = std::max(worst, n);
-  }
+  for (const Hinge& h : a) worst = worst_of(worst, ring_distance(c, ra, h, b, &mirror, xc, tol));
+  for (const Hinge& g : b) worst = worst_of(worst, ring_distance(c, rb, g, a, &mirror, xc, tol));
   return worst;
 }
 
@@ -447,10 +442,10 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
       // be invisible in the DEM.
       h.a = hinges_of(c, a, *sa, k.hinge_gap);
       h.b = hinges_of(c, b, *sb, k.hinge_gap);
-      for (Hinge& x : h.a) x.apart = ring_distance(c, a, x, h.b, nullptr, xc, tol);
-      for (Hinge& x : h.b) x.apart = ring_distance(c, b, x, h.a, nullptr, xc, tol);
-      const int direct = hinge_set_shift(c, a, b, h.a, h.b, nullptr, xc, tol);
-      const int mirrored = k.symmetric ? hinge_set_shift(c, a, b, h.a, h.b, &mirror, xc, tol) : -1;
+      int direct = 0;
+      for (Hinge& x : h.a) direct = worst_of(direct, x.apart = ring_distance(c, a, x, h.b, nullptr, xc, tol));
+      for (Hinge& x : h.b) direct = worst_of(direct, x.apart = ring_distance(c, b, x, h.a, nullptr, xc, tol));
+      const int mirrored = k.symmetric ? mirrored_shift(c, a, b, h.a, h.b, mirror, xc, tol) : -1;
       h.match = direct == 0;
       h.mirror = !h.match && mirrored == 0;
       h.shift = direct < 0 ? mirrored : mirrored < 0 ? direct : std::min(direct, mirrored);

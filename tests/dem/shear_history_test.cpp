@@ -65,11 +65,12 @@ TEST(DemShearHistory, TheReferenceFaceFlipsAtAnOpenHingeWhileTheContactStays) {
 }
 
 // The settlement cathedral, whose nave springs from the settling pier with such a hinge
-// (nave-41/R-pier-30: the pier's top face reaches a metre past the voussoir's corner). When every flip there
-// dropped 3.2e5 N of shear (|T|/N 0.23, far below tan 35 degrees), the springing slid in steps
-// of some 11 um every 40 ms, the holds took 14-20 s, and the nave left PRD's mechanism for the
-// DEM's "X" (nave-24/25 opening right of the crown) by d = 0.03 m. With the contact's history
-// kept, the DEM opens PRD's springing hinge. Expected values come from PRD on the same case.
+// (nave-41/R-pier-30: the pier's top face reaches a metre past the voussoir's corner). When
+// every flip there dropped 3.2e5 N of shear (|T|/N 0.23, far below tan 35 degrees), the
+// springing slid in steps of some 11 um every 40 ms, the holds took 14-20 s, and the nave left
+// PRD's mechanism for the DEM's "X" (nave-24/25 opening right of the crown) by d = 0.03 m. With
+// the contact's history kept, the DEM opens PRD's springing hinge. Expected values come from PRD
+// on the same case.
 TEST(DemShearHistory, TheSettlingCathedralOpensPrdsSpringingHingeNotAnotherMechanism) {
   const Case c = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/cathedral-settlement.json");
   const int steps = 3;  // d = 0.03 m
