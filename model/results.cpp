@@ -38,6 +38,16 @@ std::optional<RunStatus> parse_status(const std::string& name) {
 
 bool located(RunStatus s) { return s == RunStatus::collapse || s == RunStatus::max_steps; }
 
+bool is_equilibrium(const RunResult& r, const StepRecord& s) { return r.method != "dem" || s.extra.value("settled", false); }
+
+const StepRecord* last_equilibrium(const RunResult& r, double d) {
+  const double eps = 1e-9 * std::max(1.0, std::abs(d));
+  const StepRecord* out = nullptr;
+  for (const StepRecord& s : r.steps)
+    if (s.d <= d + eps && is_equilibrium(r, s) && (!out || s.d >= out->d)) out = &s;
+  return out;
+}
+
 std::ostream& operator<<(std::ostream& o, RunStatus s) { return o << status_name(s); }
 
 ojson to_json(const RunResult& r, const Case& c) {

@@ -127,6 +127,12 @@ struct RunResult {
 // Throws std::runtime_error naming the step and the quantity when a record holds a number that
 // is not finite: a run whose state turned non-finite stops with an error, never a result.
 void require_finite(const StepRecord& s);
+
+// Whether a record is an equilibrium: every PRD record (its collapse configuration is not
+// among them); a DEM record whose hold settled, not the failed state closing a run.
+bool is_equilibrium(const RunResult& r, const StepRecord& s);
+// The last equilibrium record at or before d (m), or nullptr where there is none.
+const StepRecord* last_equilibrium(const RunResult& r, double d);
 // JSON has no NaN or infinity: a non-finite number is written as null, never silently as 0.
 // Every JSON writer (results, comparisons, sweeps, trade-offs) writes its numbers through this.
 nlohmann::ordered_json json_number(double x);

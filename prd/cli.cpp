@@ -3,6 +3,8 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <map>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "app/command.hpp"
@@ -87,6 +89,21 @@ int print_first_step(const Case& c, double tol, double h, const std::vector<std:
   return kExitDone;
 }
 
+// The start configuration of `masonry prd --from`: the last equilibrium record of that run at or
+// before d (NaN: its capacity).
+PrdStart start_of(const Case& c, const std::string& path, double d, StartOffsets offsets) {
+  const RunResult src = load_results(path, c);
+  const double at = std::isnan(d) ? src.capacity : d;
+  const StepRecord* rec = last_equilibrium(src, at);
+  std::ostringstream what;
+  if (!rec) {
+    what << path << ": no equilibrium record at or before d = " << at << " m";
+    throw std::runtime_error(what.str());
+  }
+  what << path << ", " << src.method << " record " << rec->index << " (d = " << rec->d << " m)";
+  return {rec->d, rec->poses, offsets, what.str()};
+}
+
 }  // namespace
 
 void add_prd_commands(CLI::App& app, Commands& out) {
@@ -118,10 +135,24 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     sub->add_option("--friction-angle", *friction,
                     "Report the first step and joint where the friction demand exceeds this angle, deg (implies --sliding)")
         ->check(CLI::Range(0.0, 90.0));
+    auto from = std::make_shared<std::string>();
+    auto from_d = std::make_shared<double>(NAN);
+    auto offsets = std::make_shared<StartOffsets>(StartOffsets::keep);
+    auto* from_opt = sub->add_option("--from", *from,
+                                     "Start from a configuration another run of this case recorded (its results.json, PRD or DEM): "
+                                     "the blocks where it left them, d going on from there (dem/README.md, \"Joint stiffness\")");
+    sub->add_option("--from-d", *from_d, "With --from: the last equilibrium record at or before this d, m (default: the run's capacity)")
+        ->needs(from_opt);
+    sub->add_option("--elastic", *offsets,
+                    "With --from: a closed corner's offset there (a DEM's elastic overlap and shear) is kept as the joint's geometry "
+                    "(keep, the default) or taken back over the first step (take-back)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, StartOffsets>{{"keep", StartOffsets::keep}, {"take-back", StartOffsets::take_back}}))
+        ->needs(from_opt);
     out.push_back({sub, [=]() {
                      const Case c = settings->apply(load_case(*path));
                      PrdSettings s = PrdSettings::from_case(c);
                      if (*friction >= 0) s.sliding_check = true;
+                     if (!from->empty()) s.start = start_of(c, *from, *from_d, *offsets);
                      warn_lp_cost(c, "prd", 2e-7);
                      Progress progress{};
                      progress.max_steps = s.max_steps;

@@ -39,7 +39,10 @@ struct GlpDeleter {
 struct Endpoint {
   int joint;
   int corner;    // 0 = A, 1 = B
-  Vec2 X;        // material point (initial configuration), shared by both blocks at the start
+  Vec2 X;        // block i's material point (initial configuration)
+  // Block j's material point: X, shared by both blocks at the start, unless a run started
+  // from a deformed configuration keeps the corner's offset there (PrdStart).
+  Vec2 Xj;
   bool closed = true;
   bool held = false;  // kept closed whatever the loads do (PrdOptions::hold_closed): its row an equality
 };
@@ -64,6 +67,10 @@ struct Model {
 
   Vec2 pos(int b, const Vec2& X) const { return cen[b] + rot(angle[b]) * (X - c0[b]); }
   Vec2 normal(const Endpoint& e) const { return rot(angle[joints[e.joint].i]) * joints[e.joint].normal; }
+  // Where corner e stands on each of its joint's blocks, and its gap (m, along the normal).
+  Vec2 on_i(const Endpoint& e) const { return pos(joints[e.joint].i, e.X); }
+  Vec2 on_j(const Endpoint& e) const { return pos(joints[e.joint].j, e.Xj); }
+  double gap(const Endpoint& e) const { return (on_j(e) - on_i(e)).dot(normal(e)); }
   // Whether endpoint e carries its joint's no-sliding row (see the top of this file).
   bool sliding_row(size_t e) const { return ends[e].closed && (ends[e].corner == 0 || !ends[e - 1].closed); }
 };
@@ -172,6 +179,9 @@ double corner_force(const Model& m, size_t e);  // dual of corner e's no-penetra
 double corner_slack(const Model& m, size_t e);  // primal minus bound of that row, LP units
 // Marks the corners named BLOCK/BLOCK:A held (Endpoint::held); throws naming the case for a name no corner has.
 void hold_corners(Model& m, const std::vector<std::string>& names);
+// Stage "start": places every block where a PrdStart's poses put it and sets each corner's
+// contact state (and, keeping offsets, block j's material point) from its gap there.
+void start_from(Model& m, const PrdStart& start);
 // The held corners' normal forces from the LP just solved (N; negative: the hold pulls, a tension
 // no-tension masonry cannot give), as the record's "held_corners".
 void record_held(const Model& m, StepRecord& rec);

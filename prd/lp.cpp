@@ -45,8 +45,8 @@ Model build_model(const Case& c, double tol) {
   m.cen = m.c0;
   m.angle.assign(nb, 0.0);
   for (size_t k = 0; k < m.joints.size(); ++k) {
-    m.ends.push_back({static_cast<int>(k), 0, m.joints[k].a});
-    m.ends.push_back({static_cast<int>(k), 1, m.joints[k].b});
+    m.ends.push_back({static_cast<int>(k), 0, m.joints[k].a, m.joints[k].a});
+    m.ends.push_back({static_cast<int>(k), 1, m.joints[k].b, m.joints[k].b});
   }
 
   m.lp.reset(glp_create_prob());
@@ -96,7 +96,7 @@ void update_lp(Model& m, double h, double scale, double h_open) {
   for (size_t e = 0; e < m.ends.size(); ++e) {
     const Endpoint& ep = m.ends[e];
     const Interface& jt = m.joints[ep.joint];
-    const Vec2 pi = m.pos(jt.i, ep.X), pj = m.pos(jt.j, ep.X);
+    const Vec2 pi = m.on_i(ep), pj = m.on_j(ep);
     const Vec2 n = m.normal(ep), t = perp(n);
     // Both blocks' velocities are taken at the midpoint of the corner's two material points:
     // they coincide up to the second-order drift of the finite update, and one point makes the
@@ -214,7 +214,7 @@ void read_forces(const Model& m, StepRecord& rec) {
       const double fn = glp_get_row_dual(lp, 2 * static_cast<int>(e) + 1);
       const double ft = m.sliding_row(e) ? glp_get_row_dual(lp, 2 * static_cast<int>(e) + 2) : 0.0;
       n = m.normal(ep);
-      const Vec2 p = 0.5 * (m.pos(jt.i, ep.X) + m.pos(jt.j, ep.X));
+      const Vec2 p = 0.5 * (m.on_i(ep) + m.on_j(ep));
       N += fn;
       T += ft;
       moment_point += fn * p;

@@ -55,9 +55,7 @@ void record_corners(const Model& m, StepRecord& rec) {
   for (size_t e = 0; e < m.ends.size(); ++e) {
     if (m.ends[e].closed) continue;
     const Endpoint& ep = m.ends[e];
-    const Interface& jt = m.joints[ep.joint];
-    const double gap = (m.pos(jt.j, ep.X) - m.pos(jt.i, ep.X)).dot(m.normal(ep));
-    rec.open_corners.push_back({ep.joint, ep.corner, gap});
+    rec.open_corners.push_back({ep.joint, ep.corner, m.gap(ep)});
     cracked[ep.joint] = 1;
   }
   for (size_t k = 0; k < cracked.size(); ++k)
@@ -74,8 +72,7 @@ void gaps_and_rates(const Model& m, double h, double h_open, std::vector<double>
   rate.resize(m.ends.size());
   for (size_t e = 0; e < m.ends.size(); ++e) {
     const Endpoint& ep = m.ends[e];
-    const Interface& jt = m.joints[ep.joint];
-    gap[e] = (m.pos(jt.j, ep.X) - m.pos(jt.i, ep.X)).dot(m.normal(ep));
+    gap[e] = m.gap(ep);
     const double held = !ep.closed && h_open < h ? gap[e] * h / h_open : gap[e];  // the row's gap
     rate[e] = (slack[e] - held) / h;
   }
@@ -131,10 +128,36 @@ double gap_after(const Model& m, const Path& U, size_t e, double h) {
   double ai, aj;
   pose_after(m, U, jt.i, h, ci, ai);
   pose_after(m, U, jt.j, h, cj, aj);
-  const Vec2 pi = ci + rot(ai) * (ep.X - m.c0[jt.i]), pj = cj + rot(aj) * (ep.X - m.c0[jt.j]);
+  const Vec2 pi = ci + rot(ai) * (ep.X - m.c0[jt.i]), pj = cj + rot(aj) * (ep.Xj - m.c0[jt.j]);
   return (pj - pi).dot(rot(ai) * jt.normal);
 }
 
+
+void start_from(Model& m, const PrdStart& start) {
+  const Case& c = *m.c;
+  if (start.poses.size() != c.blocks.size())
+    throw std::invalid_argument(c.source + ": prd: the start configuration has " + std::to_string(start.poses.size()) +
+                                " poses for " + std::to_string(c.blocks.size()) + " blocks (" + start.source + ")");
+  if (!std::isfinite(start.d)) throw std::invalid_argument(c.source + ": prd: the start's d is not a number (" + start.source + ")");
+  for (size_t b = 0; b < c.blocks.size(); ++b) {
+    const Pose& q = start.poses[b];
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.angle))
+      throw std::invalid_argument(c.source + ": block '" + printable(c.blocks[b].id) + "': the start pose is not a number (" +
+                                  start.source + ")");
+    m.cen[b] = Vec2(q.x, q.y);
+    m.angle[b] = q.angle;
+  }
+  for (Endpoint& e : m.ends) {
+    e.closed = m.gap(e) <= m.tol;
+    // Block j's material point moves to where block i's corner stands now, so that the
+    // corner's overlap and shear offset are the joint's geometry from here on; an open
+    // corner's gap is a real one and stays.
+    if (e.closed && start.offsets == StartOffsets::keep) {
+      const int j = m.joints[e.joint].j;
+      e.Xj = m.c0[j] + rot(-m.angle[j]) * (m.on_i(e) - m.cen[j]);
+    }
+  }
+}
 
 void hold_corners(Model& m, const std::vector<std::string>& names) {
   for (const std::string& want : names) {

@@ -13,11 +13,29 @@
 
 namespace masonry {
 
+// A run started from a configuration another run recorded (either method's results.json):
+// every block, supports included, where the record's poses put it, and d going on from the
+// record's d. The joints are the case's own, found on its geometry; a corner whose gap exceeds
+// the contact tolerance starts open. A closed corner's offset (a DEM's elastic overlap and
+// elastic shear) is either kept as the joint's geometry, so the blocks go on rigid as the
+// elastic joints had deformed them, or taken back over the first step, so they go on rigid as
+// cut. Why: PRD on the DEM's deformed configuration says what of a capacity difference is the
+// geometry the elastic joints deform to (dem/README.md, "Joint stiffness").
+enum class StartOffsets { keep, take_back };
+struct PrdStart {
+  double d = 0.0;           // m: the record's d; the run's records and capacity count from it
+  std::vector<Pose> poses;  // one per block, in case order (centroid and rotation since the start)
+  StartOffsets offsets = StartOffsets::keep;
+  std::string source;       // where the configuration comes from, for the results' settings
+};
+const char* start_offsets_name(StartOffsets o);  // "keep", "take-back": the CLI's words
+
 // PRD's settings (model/case.hpp's PrdOptions, declared once there) and the motion's increment,
 // as one run takes them.
 struct PrdSettings : PrdOptions {
   double step = 0.001;   // increment of d per step, m
-  int max_steps = 1000;  // the run ends at d = max_steps * step
+  int max_steps = 1000;  // the run ends after max_steps steps (at d = max_steps * step from the start)
+  std::optional<PrdStart> start;  // absent: from the case's own geometry at d = 0
   static PrdSettings from_case(const Case& c);
 };
 

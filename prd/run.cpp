@@ -18,6 +18,8 @@ PrdSettings PrdSettings::from_case(const Case& c) {
   return s;
 }
 
+const char* start_offsets_name(StartOffsets o) { return o == StartOffsets::keep ? "keep" : "take-back"; }
+
 PrdCheck prd_check(const Case& c, double contact_tolerance) {
   prd::install_glpk_hooks();
   Model m = build_model(c, contact_tolerance);
@@ -88,6 +90,7 @@ struct Walk {
   double h_ref = 0;   // the fixed step, m
   double tol_ev = 0;  // how closely events are located, m (a fixed run: one step)
   double h_max = 0;   // the longest move, m
+  double d0 = 0;      // where the loading path starts, m (PrdStart)
   double d_end = 0;   // the end of the loading path, m
   Model m;
   SlidingLp sliding;
@@ -115,13 +118,18 @@ struct Walk {
     h_max = !s.adaptive ? h_ref
                         : std::max(s.max_step > 0 ? s.max_step : std::min(16 * h_ref, 0.4 * std::sqrt(tol_ev * scene_size(c))),
                                    tol_ev);
-    d_end = s.max_steps * h_ref;
+    if (s.start) {
+      start_from(m, *s.start);
+      d0 = s.start->d;
+    }
+    cur.d = d0;
+    d_end = d0 + s.max_steps * h_ref;
     h_plan = h_ref;
     hold_corners(m, s.hold_closed);
     // A held corner never opens, whatever its force does: no event to predict.
     ignored.assign(m.ends.size(), 0);
     for (size_t e = 0; e < m.ends.size(); ++e) ignored[e] = m.ends[e].held;
-    rec = configuration_record(m, 0, 0.0);
+    rec = configuration_record(m, 0, d0);
   }
 
   // Whether the loading path goes on beyond d.
@@ -343,11 +351,8 @@ void take(Walk& w, const Solved& sv, const Step& st, RunResult& r) {
   std::vector<char> closed = closed_after(m, w.gap, w.rate, sv.h, st.h, w.h_ref);
   if (std::isfinite(st.shut.at)) closed[st.shut.corner] = 1;
   if (!w.cur.dU.empty())  // off the first-order update, a corner's gap is what it is
-    for (size_t e = 0; e < m.ends.size(); ++e) {
-      const Interface& jt = m.joints[m.ends[e].joint];
-      if (!m.ends[e].closed && (m.pos(jt.j, m.ends[e].X) - m.pos(jt.i, m.ends[e].X)).dot(m.normal(m.ends[e])) <= m.tol)
-        closed[e] = 1;
-    }
+    for (size_t e = 0; e < m.ends.size(); ++e)
+      if (!m.ends[e].closed && m.gap(m.ends[e]) <= m.tol) closed[e] = 1;
   std::vector<size_t> shut_now;
   for (size_t e = 0; e < m.ends.size(); ++e)
     if (closed[e] && !m.ends[e].closed) shut_now.push_back(e);
@@ -359,7 +364,7 @@ void take(Walk& w, const Solved& sv, const Step& st, RunResult& r) {
   w.h_in = st.h;
   w.arrived_closing = std::isfinite(st.shut.at) ? st.shut.within : -1;
   w.cur.index += 1;
-  w.cur.d = w.s.adaptive ? w.prev->d + st.h : w.cur.index * w.h_ref;
+  w.cur.d = w.s.adaptive ? w.prev->d + st.h : w.d0 + w.cur.index * w.h_ref;
   w.rec = configuration_record(m, w.cur.index, w.cur.d);
 }
 
@@ -407,6 +412,8 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   Walk w(c, s);
   r.settings = {{"step", s.step}, {"max_steps", s.max_steps}, {"contact_tolerance", s.contact_tolerance}};
   if (!s.hold_closed.empty()) r.settings["hold_closed"] = s.hold_closed;
+  if (s.start)
+    r.settings["start"] = {{"d", s.start->d}, {"offsets", start_offsets_name(s.start->offsets)}, {"from", s.start->source}};
   if (s.adaptive) {
     r.settings["adaptive"] = true;
     r.settings["event_tolerance"] = w.tol_ev;

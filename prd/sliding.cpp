@@ -38,7 +38,7 @@ FrictionProblem friction_problem(const Model& m) {
     if (!m.ends[e].closed) continue;
     const Endpoint& ep = m.ends[e];
     const Interface& jt = m.joints[ep.joint];
-    const Vec2 n = m.normal(ep), x = 0.5 * (m.pos(jt.i, ep.X) + m.pos(jt.j, ep.X));
+    const Vec2 n = m.normal(ep), x = 0.5 * (m.on_i(ep) + m.on_j(ep));
     p.fn_col[e] = ++p.ncols;
     add_force(p.ncols, jt.j, n, x);
     add_force(p.ncols, jt.i, -n, x);

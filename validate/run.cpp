@@ -69,7 +69,7 @@ Measured threshold(const Catalogue& cat, const Benchmark& b, Method m) {
 const StepRecord* record_at(const RunResult& r, double d) {
   const double eps = 1e-9 * std::max(1.0, std::abs(d));
   for (const StepRecord& s : r.steps)
-    if (std::abs(s.d - d) <= eps && (r.method != "dem" || s.extra.value("settled", false))) return &s;
+    if (std::abs(s.d - d) <= eps && is_equilibrium(r, s)) return &s;
   return nullptr;
 }
 
@@ -103,7 +103,7 @@ Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& c
       double worst = 0;
       int n = 0;
       for (const StepRecord& s : r.steps) {
-        if (m == Method::dem && !s.extra.value("settled", false)) continue;  // the failed state closing a run
+        if (!is_equilibrium(r, s)) continue;  // the failed state closing a DEM run
         Vec2 sum(0, 0);
         for (const Reaction& x : s.reactions) sum += x.force;
         worst = std::max(worst, (sum + P).norm() / P.norm());
