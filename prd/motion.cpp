@@ -149,12 +149,15 @@ void start_from(Model& m, const PrdStart& start) {
   }
   for (Endpoint& e : m.ends) {
     e.closed = m.gap(e) <= m.tol;
-    // Block j's material point moves to where block i's corner stands now, so that the
-    // corner's overlap and shear offset are the joint's geometry from here on; an open
-    // corner's gap is a real one and stays.
+    // Both blocks' material points move to the midpoint of the corner's two copies, where a
+    // DEM applies the contact force (dem/README.md, "Manifold"), so that the corner's overlap
+    // and elastic shear are the joint's geometry from here on, the same whichever block is
+    // i. An open corner's gap is a real one and stays.
     if (e.closed && start.offsets == StartOffsets::keep) {
-      const int j = m.joints[e.joint].j;
-      e.Xj = m.c0[j] + rot(-m.angle[j]) * (m.on_i(e) - m.cen[j]);
+      const Interface& jt = m.joints[e.joint];
+      const Vec2 mid = 0.5 * (m.on_i(e) + m.on_j(e));
+      e.X = m.c0[jt.i] + rot(-m.angle[jt.i]) * (mid - m.cen[jt.i]);
+      e.Xj = m.c0[jt.j] + rot(-m.angle[jt.j]) * (mid - m.cen[jt.j]);
     }
   }
 }

@@ -172,6 +172,19 @@ Solved solve_here(Walk& w) {
   sv.h_open = std::min(sv.h, w.tol_ev);
   update_lp(w.m, sv.h, sv.h, sv.h_open);
   sv.status = w.m.ncols == 0 ? LpStatus::optimal : solve(w.m);
+  // A corner left open within the contact tolerance (an event-driven move judges closings by
+  // their rates) is closed by the tolerance's definition; where the LP cannot keep it from
+  // closing faster than its open row allows, it is closed and the LP solved again. A start
+  // from a DEM's settled state (PrdStart), with gaps of 1e-6..1e-4 m at many corners, needs it.
+  if (sv.status == LpStatus::infeasible) {
+    bool closed_any = false;
+    for (Endpoint& e : w.m.ends)
+      if (!e.closed && w.m.gap(e) <= w.m.tol) e.closed = closed_any = true;
+    if (closed_any) {
+      update_lp(w.m, sv.h, sv.h, sv.h_open);
+      sv.status = solve(w.m);
+    }
+  }
   if (sv.status == LpStatus::optimal) {
     gaps_and_rates(w.m, sv.h, sv.h_open, w.gap, w.rate);
     const std::vector<char> next = closed_after(w.m, w.gap, w.rate, sv.h, sv.h_open, w.h_ref);
@@ -410,6 +423,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   r.method = "prd";
   r.case_name = c.name;
   Walk w(c, s);
+  r.capacity = w.d0;  // a start that is unstable as it stands: no stable configuration beyond it
   r.settings = {{"step", s.step}, {"max_steps", s.max_steps}, {"contact_tolerance", s.contact_tolerance}};
   if (!s.hold_closed.empty()) r.settings["hold_closed"] = s.hold_closed;
   if (s.start)
