@@ -124,6 +124,8 @@ ojson convergence_json(const Convergence& c) {
     r["kn"] = e.run.settings.contains("kn") ? e.run.settings["kn"] : ojson(nullptr);
     if (const std::optional<HingeTally> h = hinge_tally(c, e.run))
       r["hinges_against_prd"] = {{"checks", h->checks}, {"same_joints", h->same}, {"within_one_joint", h->within_one}};
+    if (e.prd_on_run)
+      r["prd_on_run"] = {{"from_d", e.prd_on_run->from_d}, {"kept", json_number(e.prd_on_run->kept)}, {"taken_back", json_number(e.prd_on_run->taken_back)}};
     if (c.scene && c.study == Study::stiffness && c.prd) r["parts_from_prd"] = parting_json(parting(c, e.run, *c.prd));
     else if (c.scene && &e != &c.entries.front()) r["parts_from_default"] = parting_json(parting(c, e.run, c.entries.front().run));
     runs.push_back(r);
@@ -183,6 +185,25 @@ std::string convergence_markdown(const Convergence& c) {
   if (tally)
     d.paragraph({"Hinges as PRD's: of the five hinge checks of PRD against the run (compare/README.md, \"Hinges\"), how many find the "
                  "same joints and, in brackets, the same joints or a neighbour along the ring (\"Hinges one joint apart\")."});
+  if (std::any_of(c.entries.begin(), c.entries.end(), [](const ConvergenceEntry& e) { return e.prd_on_run.has_value(); })) {
+    d.paragraph({Cell("PRD on each run's deformed configuration", CellStyle::strong),
+                 " (`masonry prd --from`, prd/prd.hpp PrdStart): PRD started from the run's last equilibrium at or before 0.9 of its "
+                 "capacity, every block where the run left it. Offsets kept: each closed joint corner's elastic overlap and shear "
+                 "become the joint's geometry, and the blocks go on rigid as the elastic joints had deformed them. Taken back: the "
+                 "first step undoes them, the blocks rigid as cut. Where the kept column meets the run's capacity and the taken-back "
+                 "one PRD's own, the difference is the geometry the joints deform to, not the protocol or another mechanism."});
+    Table g;
+    g.head = {"run", "from d (m)", "capacity (m)", "PRD, offsets kept (m)", "against the run", "PRD, taken back (m)", "against the run"};
+    g.align = {Align::left, Align::right, Align::right, Align::right, Align::right, Align::right, Align::right};
+    for (const ConvergenceEntry& e : c.entries) {
+      if (!e.prd_on_run) continue;
+      const PrdOnRun& p = *e.prd_on_run;
+      const double cap = e.run.capacity;
+      g.rows.push_back({e.name, fmt::number(p.from_d, "%.4f", p.from_d), fmt::number(cap, "%.4f", cap), fmt::number(p.kept, "%.4f", p.kept),
+                        pct((p.kept - cap) / cap), fmt::number(p.taken_back, "%.4f", p.taken_back), pct((p.taken_back - cap) / cap)});
+    }
+    d.table(std::move(g));
+  }
   // "The default" is the case's settings as the command changed them (a stiffness, a hold cap,
   // a number of increments): the settings its run recorded make the study reproducible.
   if (!c.entries.empty() && !c.entries.front().run.settings.empty())

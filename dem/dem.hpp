@@ -42,18 +42,8 @@ struct DemSnapshot {
   std::shared_ptr<const Data> data;
 };
 
-// The normal gap at one joint corner, m, from the two blocks' copies of it (world frame: pi on
-// block i, pj on block j) and their outward joint normals (ni of i, nj of j): the smaller of the
-// two copies' stand-off from the other block's face (negative: overlap). A corner is open only
-// when neither block touches the other there. A joint corner is a corner of at least one of its
-// blocks; where the other block's face runs on past it (a pier's top under a voussoir), that
-// block's copy is a point of its face, which slides away under the turning corner as the joint
-// slips, and its stand-off from the turned face is slip x sin(theta), not an opening: 12-25 um at
-// the settlement cathedral's springing hinge with joints 30 times stiffer (0.2-0.3 mm of slip at
-// 60-80 mrad) while the voussoir's corner pressed into the pier by 2.7 um (dem/README.md,
-// "Hinges: measured from the settled state"). A real opening stands both copies off by the same
-// amount to within that term.
-double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj);
+// corner_gap, the gap at a joint corner a DEM reports, is model/interfaces.hpp's: PRD started
+// from a DEM's configuration reads its corners by the same rule.
 
 // The simulator: build it from a case, then place the supports and cycle.
 class DemModel {

@@ -144,8 +144,6 @@ void DemModel::restore(const DemSnapshot& snap) {
   m.transform_pieces(true);
 }
 
-double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj) { return std::min((pj - pi).dot(ni), (pi - pj).dot(nj)); }
-
 std::vector<double> DemModel::corner_gaps(const std::vector<Interface>& joints) const {
   const Impl& m = *p_;
   std::vector<double> g;

@@ -64,6 +64,8 @@ bool edge_pair(const Edge& e, const Edge& f, double tol, Interface& out) {
 
 }  // namespace
 
+double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj) { return std::min((pj - pi).dot(ni), (pi - pj).dot(nj)); }
+
 std::string corner_name(const Case& c, int i, int j, int corner) {
   const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
   return id(i) + "/" + id(j) + (corner == 0 ? ":A" : ":B");

@@ -27,6 +27,19 @@ std::vector<Interface> detect_interfaces(const Case& c, double tol);
 // index outside the case reads "?"), as reports print it and `masonry check --hold` takes it.
 std::string corner_name(const Case& c, int i, int j, int corner);
 
+// The normal gap at one joint corner, m, from the two blocks' copies of it (world frame: pi on
+// block i, pj on block j) and their outward joint normals (ni of i, nj of j): the smaller of the
+// two copies' stand-off from the other block's face (negative: overlap). A corner is open only
+// when neither block touches the other there. A joint corner is a corner of at least one of its
+// blocks; where the other block's face runs on past it (a pier's top under a voussoir), that
+// block's copy is a point of its face, which slides away under the turning corner as the joint
+// slips, and its stand-off from the turned face is slip x sin(theta), not an opening: 12-25 um at
+// the settlement cathedral's springing hinge with joints 30 times stiffer (0.2-0.3 mm of slip at
+// 60-80 mrad) while the voussoir's corner pressed into the pier by 2.7 um (dem/README.md,
+// "Hinges: measured from the settled state"). A real opening stands both copies off by the same
+// amount to within that term.
+double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj);
+
 // Geometry predicates shared by validation and detection.
 bool point_in_polygon(const Vec2& p, const std::vector<Vec2>& poly);
 double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b);

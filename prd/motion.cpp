@@ -148,13 +148,15 @@ void start_from(Model& m, const PrdStart& start) {
     m.angle[b] = q.angle;
   }
   for (Endpoint& e : m.ends) {
-    e.closed = m.gap(e) <= m.tol;
+    // Touching as a DEM reads it (corner_gap): where one block's face runs on past the corner,
+    // its copy's stand-off from the other's turned face is slip x sin(theta), not an opening.
+    const Interface& jt = m.joints[e.joint];
+    e.closed = corner_gap(m.on_i(e), m.normal(e), m.on_j(e), rot(m.angle[jt.j]) * Vec2(-jt.normal)) <= m.tol;
     // Both blocks' material points move to the midpoint of the corner's two copies, where a
     // DEM applies the contact force (dem/README.md, "Manifold"), so that the corner's overlap
     // and elastic shear are the joint's geometry from here on, the same whichever block is
     // i. An open corner's gap is a real one and stays.
     if (e.closed && start.offsets == StartOffsets::keep) {
-      const Interface& jt = m.joints[e.joint];
       const Vec2 mid = 0.5 * (m.on_i(e) + m.on_j(e));
       e.X = m.c0[jt.i] + rot(-m.angle[jt.i]) * (mid - m.cen[jt.i]);
       e.Xj = m.c0[jt.j] + rot(-m.angle[jt.j]) * (mid - m.cen[jt.j]);

@@ -318,7 +318,7 @@ TEST(Convergence, AStudyOfPathEndsDoesNotReadAsOneOfCollapses) {
       r.status = s;
       r.capacity = 0.1;
       r.settings = {{"hold_time", 150.0}};
-      c.entries.push_back({name, name, r});
+      c.entries.push_back({name, name, r, std::nullopt});
     }
     c.prd_capacity = 0.1;
     return c;

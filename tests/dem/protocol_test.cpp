@@ -326,7 +326,7 @@ TEST(DemConvergence, SmallArchAgreesAcrossSettings) {
   study.prd_capacity = prd_run(c, PrdSettings::from_case(c)).capacity;
   for (size_t i = 0; i < variants.size(); ++i) {
     std::printf("%-15s %-10s %.5f m, %.2f s\n", variants[i].name.c_str(), status_name(runs[i].status), runs[i].capacity, runs[i].timing.total_s);
-    study.entries.push_back({variants[i].name, variants[i].what, runs[i]});
+    study.entries.push_back({variants[i].name, variants[i].what, runs[i], std::nullopt});
   }
   const ConvergenceVerdict v = judge(study);
   for (const std::string& problem : v.problems) ADD_FAILURE() << problem;
