@@ -142,7 +142,10 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       runs.push_back({dem_label(phi), nullptr, sub});
     }
   }
-  for (size_t k = 0; k < runs.size(); ++k) runs[k].run = &results[k];
+  for (size_t k = 0; k < runs.size(); ++k) {
+    runs[k].run = &results[k];
+    runs[k].prd_on_run = prd_on_run(c, results[k]);
+  }
   Report rep = make_report(c, runs, tol ? &*tol : nullptr);
   rep.command = command_line(o, case_shown);
   rep.frames = o.frames;

@@ -125,7 +125,7 @@ ojson convergence_json(const Convergence& c) {
     if (const std::optional<HingeTally> h = hinge_tally(c, e.run))
       r["hinges_against_prd"] = {{"checks", h->checks}, {"same_joints", h->same}, {"within_one_joint", h->within_one}};
     if (e.prd_on_run)
-      r["prd_on_run"] = {{"from_d", e.prd_on_run->from_d}, {"kept", json_number(e.prd_on_run->kept)}, {"taken_back", json_number(e.prd_on_run->taken_back)}};
+      r["prd_on_run"] = prd_on_run_json(*e.prd_on_run);
     if (c.scene && c.study == Study::stiffness && c.prd) r["parts_from_prd"] = parting_json(parting(c, e.run, *c.prd));
     else if (c.scene && &e != &c.entries.front()) r["parts_from_default"] = parting_json(parting(c, e.run, c.entries.front().run));
     runs.push_back(r);
@@ -203,6 +203,9 @@ std::string convergence_markdown(const Convergence& c) {
                         pct((p.kept - cap) / cap), fmt::number(p.taken_back, "%.4f", p.taken_back), pct((p.taken_back - cap) / cap)});
     }
     d.table(std::move(g));
+    const PrdOnRun& first = *std::find_if(c.entries.begin(), c.entries.end(), [](const ConvergenceEntry& e) { return e.prd_on_run.has_value(); })->prd_on_run;
+    d.paragraph({"PRD from the case's own geometry, its events located to the same " + fmt::mm(first.tolerance, 2) + " mm: " +
+                 fmt::number(first.own, "%.4f m", first.own) + "."});
   }
   // "The default" is the case's settings as the command changed them (a stiffness, a hold cap,
   // a number of increments): the settings its run recorded make the study reproducible.

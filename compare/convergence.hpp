@@ -3,7 +3,6 @@
 // Reads RunResults only; writes convergence.json and convergence.md.
 #pragma once
 
-#include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -18,15 +17,6 @@ namespace masonry {
 // joints' stiffness (a measurement: each run against PRD, no limits; dem/variants.hpp).
 enum class Study { convergence, stiffness };
 const char* study_name(Study s);  // "convergence", "stiffness": the study's file names
-
-// PRD started from a run's configuration (prd/prd.hpp, PrdStart) with each closed corner's
-// offset kept as the joint's geometry, and with it taken back: how much of the run's difference
-// from PRD is the geometry its elastic joints deform to (stiffness studies; dem/README.md).
-struct PrdOnRun {
-  double from_d = 0.0;      // m: the run's equilibrium record PRD starts from
-  double kept = NAN;        // m: PRD's capacity with the offsets kept (NaN: not located)
-  double taken_back = NAN;  // m: with them taken back
-};
 
 struct ConvergenceEntry {
   std::string name, what;  // the variant

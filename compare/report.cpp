@@ -123,7 +123,7 @@ ojson report_json(const Report& r) {
   j["units"] = "SI: m, N, s; thrust as reaction / total weight";
   j["case"] = r.c->name;
   ojson runs = ojson::array();
-  for (const ReportRun& rr : r.runs)
+  for (const ReportRun& rr : r.runs) {
     runs.push_back({{"label", rr.label},
                     {"method", rr.run->method},
                     {"dir", rr.dir},
@@ -132,6 +132,8 @@ ojson report_json(const Report& r) {
                     {"stopped", status_name(rr.run->status)},
                     {"time_s", json_number(rr.run->timing.total_s)},
                     {"settings", rr.run->settings}});
+    if (rr.prd_on_run) runs.back()["prd_on_run"] = prd_on_run_json(*rr.prd_on_run);
+  }
   j["runs"] = runs;
   ojson cs = ojson::array();
   for (size_t k = 0; k < r.comparisons.size(); ++k) {
@@ -201,6 +203,34 @@ Table headline(const Report& r) {
   t.align.assign(t.head.size(), Align::right);
   t.align[0] = Align::left;
   return t;
+}
+
+// PRD on each DEM run's deformed configuration: what of the capacity difference is the geometry
+// the elastic joints deform to (dem/README.md, "What the compliance costs").
+void deformed_section(Document& d, const Report& r) {
+  Table t;
+  t.head = {"run", "from d (mm)", "its capacity (mm)", "PRD, offsets kept (mm)", "against the run", "PRD, taken back (mm)",
+            "PRD from the case (mm)"};
+  t.align.assign(t.head.size(), Align::right);
+  t.align[0] = Align::left;
+  double tolerance = 0;
+  for (const ReportRun& rr : r.runs) {
+    if (!rr.prd_on_run) continue;
+    const PrdOnRun& p = *rr.prd_on_run;
+    const double cap = rr.run->capacity;
+    tolerance = p.tolerance;
+    t.rows.push_back({rr.label, fmt::mm(p.from_d, 1), fmt::mm(cap, 1), fmt::mm(p.kept, 1), fmt::pct((p.kept - cap) / cap, 2),
+                      fmt::mm(p.taken_back, 1), fmt::mm(p.own, 1)});
+  }
+  if (t.rows.empty()) return;
+  d.paragraph({Cell("PRD on the DEM's deformed configuration", CellStyle::strong),
+               " (`masonry prd --from`): PRD started from the DEM's last equilibrium at or before 0.9 of its capacity, every block "
+               "where the DEM left it, its events located to " + fmt::mm(tolerance, 2) + " mm (the DEM's collapse bracket). Offsets kept: each "
+               "touching joint corner's elastic overlap and shear become the joint's geometry, the blocks rigid from there as the "
+               "joints had deformed them; taken back: PRD's first step undoes them, the blocks rigid as cut. Where the kept column meets "
+               "the DEM's capacity and the taken-back one PRD's from the case, the two methods agree on the deformed structure and their "
+               "difference is the geometry the DEM's elastic joints deform to."});
+  d.table(std::move(t));
 }
 
 void tolerance_section(Document& d, const Report& r) {
@@ -385,6 +415,7 @@ Document report_document(const Report& r, const std::vector<Figure>& figures, in
   }
   d.heading(2, {"Capacities"});
   if (const Figure* f = find_figure(figures, "figures/capacity.svg")) d.figure(f->file, f->caption, f->svg);
+  deformed_section(d, r);
   if (page) d.raw_html(slider_html(r, frames));
   for (size_t k = 0; k < r.comparisons.size(); ++k) comparison_section(d, r, k, figures, page);
   d.heading(2, {"Runs"});

@@ -3,6 +3,7 @@
 // inline script, no network; a slider steps through d).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@ struct ReportRun {
   std::string label;               // "PRD", "DEM phi=35 deg"
   const RunResult* run = nullptr;
   std::string dir;                 // its results directory, relative to the report (may be empty)
+  std::optional<PrdOnRun> prd_on_run = std::nullopt;  // a DEM run: PRD on its deformed configuration (runs/run.hpp)
 };
 
 // runs[0] is the reference; comparisons[k] compares runs[0] with runs[k + 1].

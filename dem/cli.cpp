@@ -14,7 +14,6 @@
 #include "dem/dem.hpp"
 #include "dem/variants.hpp"
 #include "model/interfaces.hpp"
-#include "prd/prd.hpp"
 #include "runs/parallel.hpp"
 #include "runs/run.hpp"
 
@@ -65,25 +64,6 @@ std::vector<RunResult> study_runs(const Case& c, Study kind, const std::vector<D
   return runs;
 }
 
-// PRD on a run's deformed configuration (PrdOnRun): from its last equilibrium at or before 0.9
-// of its capacity, events located as finely as the DEM brackets its collapse.
-std::optional<PrdOnRun> prd_on_run(const Case& c, const RunResult& run, double event_tolerance) {
-  if (!located(run.status) && run.status != RunStatus::undecided) return std::nullopt;
-  const StepRecord* rec = last_equilibrium(run, 0.9 * run.capacity);
-  if (!rec) return std::nullopt;
-  PrdSettings s = PrdSettings::from_case(c);
-  s.adaptive = true;
-  s.event_tolerance = event_tolerance;
-  PrdOnRun out;
-  out.from_d = rec->d;
-  for (StartOffsets o : {StartOffsets::keep, StartOffsets::take_back}) {
-    s.start = PrdStart{rec->d, rec->poses, o, "the DEM run's record " + std::to_string(rec->index)};
-    const RunResult r = prd_run(c, s);
-    (o == StartOffsets::keep ? out.kept : out.taken_back) = located(r.status) ? r.capacity : NAN;
-  }
-  return out;
-}
-
 // A study (convergence or joint stiffness): PRD once for reference, the DEM variants in
 // parallel, each written to DIR/<variant>/ as it goes, then DIR/<study>.{json,md} and the verdict.
 int run_study(const Case& c, const DemSettings& base, Study kind, const Opts& o) {
@@ -106,7 +86,7 @@ int run_study(const Case& c, const DemSettings& base, Study kind, const Opts& o)
   });
   for (size_t i = 0; i < variants.size(); ++i) {
     study.entries.push_back({variants[i].name, variants[i].what, runs[i], std::nullopt});
-    if (kind == Study::stiffness) study.entries.back().prd_on_run = prd_on_run(c, runs[i], base.bracket_fraction * c.motion.step);
+    if (kind == Study::stiffness) study.entries.back().prd_on_run = prd_on_run(c, runs[i]);
   }
   const std::filesystem::path out(o.out_dir);
   write_file_atomic((out / (name + ".json")).string(), convergence_json(study).dump(1) + "\n");

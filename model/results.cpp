@@ -15,6 +15,11 @@ using ojson = nlohmann::ordered_json;
 
 ojson json_number(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 
+ojson prd_on_run_json(const PrdOnRun& p) {
+  return {{"from_d", p.from_d}, {"tolerance", p.tolerance}, {"kept", json_number(p.kept)}, {"taken_back", json_number(p.taken_back)},
+          {"own", json_number(p.own)}};
+}
+
 namespace {
 ojson vec(const Vec2& v) { return ojson::array({json_number(v.x()), json_number(v.y())}); }
 }  // namespace

@@ -2,6 +2,7 @@
 // Solvers fill these structs; only the writers below touch files.
 #pragma once
 
+#include <cmath>
 #include <iosfwd>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -128,6 +129,18 @@ struct RunResult {
 // is not finite: a run whose state turned non-finite stops with an error, never a result.
 void require_finite(const StepRecord& s);
 
+// PRD started from a DEM run's configuration (prd/prd.hpp, PrdStart; runs/run.hpp, prd_on_run)
+// with each touching joint corner's elastic offset kept as the joint's geometry, and with it
+// taken back, beside PRD from the case's own geometry, all located to the same tolerance: how
+// much of the DEM's difference from PRD is the geometry its elastic joints deform to.
+struct PrdOnRun {
+  double from_d = 0.0;      // m: the run's equilibrium record PRD starts from
+  double tolerance = 0.0;   // m: how closely PRD locates its events (the DEM's collapse bracket)
+  double kept = NAN;        // m: PRD's capacity with the offsets kept (NaN: not located)
+  double taken_back = NAN;  // m: with them taken back
+  double own = NAN;         // m: PRD from the case's own geometry
+};
+
 // Whether a record is an equilibrium: every PRD record (its collapse configuration is not
 // among them); a DEM record whose hold settled, not the failed state closing a run.
 bool is_equilibrium(const RunResult& r, const StepRecord& s);
@@ -136,6 +149,10 @@ const StepRecord* last_equilibrium(const RunResult& r, double d);
 // JSON has no NaN or infinity: a non-finite number is written as null, never silently as 0.
 // Every JSON writer (results, comparisons, sweeps, trade-offs) writes its numbers through this.
 nlohmann::ordered_json json_number(double x);
+// {"from_d", "tolerance", "kept", "taken_back", "own"}, m, as comparison and study files write it.
+nlohmann::ordered_json prd_on_run_json(const PrdOnRun& p);
+// {"from_d", "tolerance", "kept", "taken_back", "own"}, m, as comparison and study files write it.
+nlohmann::ordered_json prd_on_run_json(const PrdOnRun& p);
 
 nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
 // One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.

@@ -133,6 +133,15 @@ double gap_after(const Model& m, const Path& U, size_t e, double h) {
 }
 
 
+namespace {
+// Whether x is one of the polygon's vertices (within tol, m).
+bool is_vertex(const std::vector<Vec2>& poly, const Vec2& x, double tol) {
+  for (const Vec2& v : poly)
+    if ((v - x).norm() <= tol) return true;
+  return false;
+}
+}  // namespace
+
 void start_from(Model& m, const PrdStart& start) {
   const Case& c = *m.c;
   if (start.poses.size() != c.blocks.size())
@@ -147,19 +156,50 @@ void start_from(Model& m, const PrdStart& start) {
     m.cen[b] = Vec2(q.x, q.y);
     m.angle[b] = q.angle;
   }
-  for (Endpoint& e : m.ends) {
-    // Touching as a DEM reads it (corner_gap): where one block's face runs on past the corner,
-    // its copy's stand-off from the other's turned face is slip x sin(theta), not an opening.
-    const Interface& jt = m.joints[e.joint];
-    e.closed = corner_gap(m.on_i(e), m.normal(e), m.on_j(e), rot(m.angle[jt.j]) * Vec2(-jt.normal)) <= m.tol;
-    // Both blocks' material points move to the midpoint of the corner's two copies, where a
-    // DEM applies the contact force (dem/README.md, "Manifold"), so that the corner's overlap
-    // and elastic shear are the joint's geometry from here on, the same whichever block is
-    // i. An open corner's gap is a real one and stays.
-    if (e.closed && start.offsets == StartOffsets::keep) {
-      const Vec2 mid = 0.5 * (m.on_i(e) + m.on_j(e));
-      e.X = m.c0[jt.i] + rot(-m.angle[jt.i]) * (mid - m.cen[jt.i]);
-      e.Xj = m.c0[jt.j] + rot(-m.angle[jt.j]) * (mid - m.cen[jt.j]);
+  // Touching as a DEM reads it (corner_gap): where one block's face runs on past the corner, its
+  // copy's stand-off from the other's turned face is slip x sin(theta), not an opening.
+  std::vector<double> gap(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    Endpoint& ep = m.ends[e];
+    const Interface& jt = m.joints[ep.joint];
+    gap[e] = corner_gap(m.on_i(ep), m.normal(ep), m.on_j(ep), rot(m.angle[jt.j]) * Vec2(-jt.normal));
+    ep.closed = gap[e] <= m.tol;
+  }
+  if (start.offsets == StartOffsets::take_back) return;
+  // Kept offsets: both blocks' material points of a touching corner move to where a DEM applies
+  // its force (dem/README.md, "Manifold"), so that its overlap and elastic shear are the
+  // joint's geometry from here on. Along the joint: at the end of the faces' overlap, the copy
+  // that is a corner of its block (where one face runs on past the other, the other copy is a
+  // point of that face, and a slip moves it away from the contact), or of two corners the inner
+  // one. Across it: midway between the two faces at the more compressed of the joint's touching
+  // corners, and both touching corners at that level, so that the joint stays a straight line
+  // along block i's face: PRD keeps a joint from slipping by one row at one corner, which holds
+  // the whole joint only while its corners lie on such a line (with them a few tenths of a mm
+  // apart across it, a block rocking about one corner would have to slip there; a tilting block
+  // on joints ten times softer then stood 1.4 mrad past the DEM's toppling). An open corner's
+  // gap is a real one and stays.
+  for (size_t k = 0; k < m.joints.size(); ++k) {
+    const Interface& jt = m.joints[k];
+    const Vec2 n = m.normal(m.ends[2 * k]), along = rot(m.angle[jt.i]) * (jt.b - jt.a);  // along: from corner A to B
+    Vec2 at[2];
+    int deepest = -1;
+    for (int corner = 0; corner < 2; ++corner) {
+      const size_t e = 2 * k + corner;
+      const Endpoint& ep = m.ends[e];
+      if (!ep.closed) continue;
+      const Vec2 pi = m.on_i(ep), pj = m.on_j(ep);
+      const bool ci = is_vertex(c.blocks[jt.i].vertices, ep.X, m.tol), cj = is_vertex(c.blocks[jt.j].vertices, ep.X, m.tol);
+      const bool j_inner = (corner == 0) == ((pj - pi).dot(along) > 0);
+      const Vec2 p = ci && !cj ? pi : cj && !ci ? pj : j_inner ? pj : pi;
+      at[corner] = p + (0.5 * (pi + pj) - p).dot(n) * n;
+      if (deepest < 0 || gap[e] < gap[2 * k + deepest]) deepest = corner;
+    }
+    for (int corner = 0; corner < 2; ++corner) {
+      Endpoint& ep = m.ends[2 * k + corner];
+      if (!ep.closed) continue;
+      const Vec2 x = at[corner] + (at[deepest] - at[corner]).dot(n) * n;
+      ep.X = m.c0[jt.i] + rot(-m.angle[jt.i]) * (x - m.cen[jt.i]);
+      ep.Xj = m.c0[jt.j] + rot(-m.angle[jt.j]) * (x - m.cen[jt.j]);
     }
   }
 }

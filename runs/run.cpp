@@ -73,4 +73,29 @@ RunResult run_case_in_study(const Case& c, Method m, const RunOutput& out) {
   }
 }
 
+std::optional<PrdOnRun> prd_on_run(const Case& c, const RunResult& run) {
+  if (run.method != "dem" || !(located(run.status) || run.status == RunStatus::undecided)) return std::nullopt;
+  const StepRecord* rec = last_equilibrium(run, 0.9 * run.capacity);
+  if (!rec) return std::nullopt;
+  const auto number = [&](const char* key, double fallback) {
+    return run.settings.contains(key) && run.settings[key].is_number() ? run.settings[key].get<double>() : fallback;
+  };
+  PrdOnRun out;
+  out.from_d = rec->d;
+  out.tolerance = number("bracket_fraction", c.dem.bracket_fraction) * number("step", c.motion.step);
+  PrdSettings s = PrdSettings::from_case(c);
+  s.adaptive = true;
+  s.event_tolerance = out.tolerance;
+  const auto capacity = [&](const PrdSettings& t) {
+    const RunResult r = prd_run(c, t);
+    return located(r.status) ? r.capacity : NAN;
+  };
+  out.own = capacity(s);
+  for (StartOffsets o : {StartOffsets::keep, StartOffsets::take_back}) {
+    s.start = PrdStart{rec->d, rec->poses, o, "the DEM run's record " + std::to_string(rec->index)};
+    (o == StartOffsets::keep ? out.kept : out.taken_back) = capacity(s);
+  }
+  return out;
+}
+
 }  // namespace masonry

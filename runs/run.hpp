@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "dem/dem.hpp"
@@ -32,5 +33,11 @@ RunResult run_dem(const Case& c, const DemSettings& s, const RunOutput& out = {}
 // For studies that go on past one bad run (sweep, tradeoff): what run_case throws becomes a run
 // stopped by "error" with the message, written to the directory like any other.
 RunResult run_case_in_study(const Case& c, Method m, const RunOutput& out = {});
+
+// PRD on a DEM run's deformed configuration (model/results.hpp, PrdOnRun): from its last
+// equilibrium at or before 0.9 of its capacity, near enough to the collapse to carry most of
+// the deformation and far enough for PRD to have a path; events located to the run's collapse
+// bracket (bracket_fraction x step). Nothing for a run that is not a DEM's or has no answer.
+std::optional<PrdOnRun> prd_on_run(const Case& c, const RunResult& run);
 
 }  // namespace masonry

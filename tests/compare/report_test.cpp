@@ -3,6 +3,7 @@
 // slider's test hook changes the drawn step, markup in a case name does not run).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <utility>
@@ -71,6 +72,33 @@ TEST(CompareCommand, ToleranceGateSetsTheExitCode) {
             2);
   EXPECT_NE(read(d / "err.txt").find("missing.txt: cannot read the notes file"), std::string::npos) << read(d / "err.txt");
   fs::remove_all(d);
+}
+
+// PRD on the DEM's deformed configuration, in the comparison of the tilting block on joints ten
+// times softer than the case's: PRD from the case and PRD with the DEM's elastic offsets taken
+// back topple at the rigid block's atan(b/h) (closed form); with the offsets kept, PRD topples
+// near the DEM's own tilt, which the soft joint lowers (dem/README.md, "Joint stiffness").
+TEST(CompareCommand, ADemRunIsHandedToPrdOnItsDeformedConfiguration) {
+  const test::Scratch scratch("compare-deformed");
+  const fs::path d = scratch.path;
+  const std::string block = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json";
+  ASSERT_EQ(run(std::string(MASONRY_EXE) + " compare " + block + " --stiffness-reduction 10 --quiet --out " + (d / "c").string() + " 2>/dev/null"), 0);
+  const auto j = nlohmann::json::parse(read(d / "c" / "comparison.json"));
+  ASSERT_EQ(j["runs"].size(), 2u);
+  EXPECT_FALSE(j["runs"][0].contains("prd_on_run")) << "PRD's own run is not handed to PRD";
+  const auto& dem = j["runs"][1];
+  ASSERT_EQ(dem["method"], "dem");
+  ASSERT_TRUE(dem.contains("prd_on_run")) << dem.dump();
+  const auto& p = dem["prd_on_run"];
+  const double rigid = std::atan(0.2 / 0.4), tol = p["tolerance"].get<double>(), cap = dem["capacity"].get<double>();
+  EXPECT_GT(tol, 0.0);
+  EXPECT_LE(p["from_d"].get<double>(), 0.9 * cap + 1e-12);
+  EXPECT_NEAR(p["own"].get<double>(), rigid, 2 * tol);
+  EXPECT_NEAR(p["taken_back"].get<double>(), rigid, 2 * tol);
+  ASSERT_GT(rigid - cap, 20 * tol) << "the soft block topples visibly early";
+  EXPECT_LT(std::abs(p["kept"].get<double>() - cap), 0.25 * (rigid - cap)) << p.dump();
+  const std::string md = read(d / "c" / "report.md");
+  EXPECT_NE(md.find("PRD on the DEM's deformed configuration"), std::string::npos);
 }
 
 // A PRD-against-PRD report (1 mm and 2 mm steps) of the arch, with markup in its name and ids.

@@ -407,6 +407,15 @@ TEST(DemStiffnessStudy, TheTopplingTiltTendsToTheRigidBlocksAsTheJointsStiffen) 
   }
   std::sort(by_kn.begin(), by_kn.end());
   const double rigid = std::atan(0.2 / 0.4);
+  // PRD on each run's deformed configuration: rigid as cut, it topples at atan(b/h); with the
+  // joint's elastic offsets kept, near where the run did (the soft joint's lean is the difference).
+  for (const auto& r : j["runs"]) {
+    ASSERT_TRUE(r.contains("prd_on_run")) << r["name"];
+    const auto& p = r["prd_on_run"];
+    const double tol = p["tolerance"].get<double>(), cap = r["capacity"].get<double>();
+    EXPECT_NEAR(p["taken_back"].get<double>(), rigid, 2 * tol) << r["name"];
+    EXPECT_LT(std::abs(p["kept"].get<double>() - cap), 0.25 * std::abs(rigid - cap) + 2 * tol) << r["name"] << ": " << p.dump();
+  }
   for (size_t k = 0; k < by_kn.size(); ++k) {
     EXPECT_LE(by_kn[k].second, rigid + width) << "kn " << by_kn[k].first;
     if (k > 0) {
