@@ -86,7 +86,7 @@ int run_study(const Case& c, const DemSettings& base, Study kind, const Opts& o)
   });
   for (size_t i = 0; i < variants.size(); ++i) {
     study.entries.push_back({variants[i].name, variants[i].what, runs[i], std::nullopt});
-    if (kind == Study::stiffness) study.entries.back().prd_on_run = prd_on_run(c, runs[i]);
+    study.entries.back().prd_on_run = prd_on_run(c, runs[i]);
   }
   const std::filesystem::path out(o.out_dir);
   write_file_atomic((out / (name + ".json")).string(), convergence_json(study).dump(1) + "\n");

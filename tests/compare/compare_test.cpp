@@ -334,6 +334,29 @@ TEST(Convergence, AStudyOfPathEndsDoesNotReadAsOneOfCollapses) {
   EXPECT_NE(a.find("\"hold_time\":150"), std::string::npos) << a;
 }
 
+// A spread beyond the limit names its two ends, and for each what PRD on that run's deformed
+// configuration gave: the reader sees whether the runs differ by their geometry or otherwise.
+TEST(Convergence, ASpreadBeyondTheLimitNamesItsEndsAndPrdOnTheirConfigurations) {
+  Convergence c;
+  c.case_name = "t";
+  const auto add = [&](const char* name, double capacity, std::optional<PrdOnRun> p) {
+    RunResult r;
+    r.status = RunStatus::collapse;
+    r.capacity = capacity;
+    c.entries.push_back({name, std::string(name) + " what", r, p});
+  };
+  add("default", 1.00, std::nullopt);
+  add("soft", 0.97, PrdOnRun{0.9, 1e-4, 0.975, 1.01, 1.01});
+  add("stiff", 1.01, std::nullopt);
+  const ConvergenceVerdict v = judge(c);
+  ASSERT_FALSE(v.ok);
+  ASSERT_EQ(v.problems.size(), 1u);
+  EXPECT_NE(v.problems[0].find("spread by 4.00%"), std::string::npos) << v.problems[0];
+  EXPECT_NE(v.problems[0].find("from soft (soft what): 0.9700 m (PRD on its deformed configuration: 0.9750 m, +0.52%) to stiff (stiff what): 1.0100 m"),
+            std::string::npos)
+      << v.problems[0];
+}
+
 TEST(Compare, ToleranceFileIsStrict) {
   EXPECT_THROW(parse_tolerances(R"({"capacty": 0.05})", "t.json"), std::runtime_error);
   EXPECT_THROW(parse_tolerances(R"({"capacity": "5%"})", "t.json"), std::runtime_error);
