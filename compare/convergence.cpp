@@ -196,13 +196,9 @@ std::string convergence_markdown(const Convergence& c) {
   if (tally)
     d.paragraph({"Hinges as PRD's: of the five hinge checks of PRD against the run (compare/README.md, \"Hinges\"), how many find the "
                  "same joints and, in brackets, the same joints or a neighbour along the ring (\"Hinges one joint apart\")."});
-  if (std::any_of(c.entries.begin(), c.entries.end(), [](const ConvergenceEntry& e) { return e.prd_on_run.has_value(); })) {
-    d.paragraph({Cell("PRD on each run's deformed configuration", CellStyle::strong),
-                 " (`masonry prd --from`, prd/prd.hpp PrdStart): PRD started from the run's last equilibrium at or before 0.9 of its "
-                 "capacity, every block where the run left it. Offsets kept: each closed joint corner's elastic overlap and shear "
-                 "become the joint's geometry, and the blocks go on rigid as the elastic joints had deformed them. Taken back: the "
-                 "first step undoes them, the blocks rigid as cut. Where the kept column meets the run's capacity and the taken-back "
-                 "one PRD's own, the difference is the geometry the joints deform to, not the protocol or another mechanism."});
+  const auto has = [](const ConvergenceEntry& e) { return e.prd_on_run.has_value(); };
+  if (const auto first = std::find_if(c.entries.begin(), c.entries.end(), has); first != c.entries.end()) {
+    d.paragraph({Cell("PRD on each run's deformed configuration", CellStyle::strong), ": " + prd_on_run_explained(first->prd_on_run->tolerance)});
     Table g;
     g.head = {"run", "from d (m)", "capacity (m)", "PRD, offsets kept (m)", "against the run", "PRD, taken back (m)", "against the run"};
     g.align = {Align::left, Align::right, Align::right, Align::right, Align::right, Align::right, Align::right};
@@ -214,9 +210,8 @@ std::string convergence_markdown(const Convergence& c) {
                         pct((p.kept - cap) / cap), fmt::number(p.taken_back, "%.4f", p.taken_back), pct((p.taken_back - cap) / cap)});
     }
     d.table(std::move(g));
-    const PrdOnRun& first = *std::find_if(c.entries.begin(), c.entries.end(), [](const ConvergenceEntry& e) { return e.prd_on_run.has_value(); })->prd_on_run;
-    d.paragraph({"PRD from the case's own geometry, its events located to the same " + fmt::mm(first.tolerance, 2) + " mm: " +
-                 fmt::number(first.own, "%.4f m", first.own) + "."});
+    d.paragraph({"PRD from the case's own geometry, its events located to the same tolerance: " +
+                 fmt::number(first->prd_on_run->own, "%.4f m", first->prd_on_run->own) + "."});
   }
   // "The default" is the case's settings as the command changed them (a stiffness, a hold cap,
   // a number of increments): the settings its run recorded make the study reproducible.

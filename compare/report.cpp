@@ -205,8 +205,21 @@ Table headline(const Report& r) {
   return t;
 }
 
+}  // namespace
+
+std::string prd_on_run_explained(double tolerance) {
+  return "PRD started from the DEM's last equilibrium at or before 0.9 of its capacity (`masonry prd --from`), every block where "
+         "the DEM left it, its events located to " + fmt::mm(tolerance, 2) + " mm (the DEM's collapse bracket). Offsets kept: each "
+         "touching joint corner's elastic overlap and shear become the joint's geometry, the blocks rigid from there as the joints "
+         "had deformed them; taken back: PRD's first step undoes them, the blocks rigid as cut. Where the kept column meets the DEM's "
+         "capacity and the taken-back one PRD's from the case, the two methods agree on the deformed structure and their difference "
+         "is the geometry the DEM's elastic joints deform to (dem/README.md, \"What the compliance costs\").";
+}
+
+namespace {
+
 // PRD on each DEM run's deformed configuration: what of the capacity difference is the geometry
-// the elastic joints deform to (dem/README.md, "What the compliance costs").
+// the elastic joints deform to.
 void deformed_section(Document& d, const Report& r) {
   Table t;
   t.head = {"run", "from d (mm)", "its capacity (mm)", "PRD, offsets kept (mm)", "against the run", "PRD, taken back (mm)",
@@ -223,13 +236,7 @@ void deformed_section(Document& d, const Report& r) {
                       fmt::mm(p.taken_back, 1), fmt::mm(p.own, 1)});
   }
   if (t.rows.empty()) return;
-  d.paragraph({Cell("PRD on the DEM's deformed configuration", CellStyle::strong),
-               " (`masonry prd --from`): PRD started from the DEM's last equilibrium at or before 0.9 of its capacity, every block "
-               "where the DEM left it, its events located to " + fmt::mm(tolerance, 2) + " mm (the DEM's collapse bracket). Offsets kept: each "
-               "touching joint corner's elastic overlap and shear become the joint's geometry, the blocks rigid from there as the "
-               "joints had deformed them; taken back: PRD's first step undoes them, the blocks rigid as cut. Where the kept column meets "
-               "the DEM's capacity and the taken-back one PRD's from the case, the two methods agree on the deformed structure and their "
-               "difference is the geometry the DEM's elastic joints deform to."});
+  d.paragraph({Cell("PRD on the DEM's deformed configuration", CellStyle::strong), ": " + prd_on_run_explained(tolerance)});
   d.table(std::move(t));
 }
 

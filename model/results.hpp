@@ -151,8 +151,6 @@ const StepRecord* last_equilibrium(const RunResult& r, double d);
 nlohmann::ordered_json json_number(double x);
 // {"from_d", "tolerance", "kept", "taken_back", "own"}, m, as comparison and study files write it.
 nlohmann::ordered_json prd_on_run_json(const PrdOnRun& p);
-// {"from_d", "tolerance", "kept", "taken_back", "own"}, m, as comparison and study files write it.
-nlohmann::ordered_json prd_on_run_json(const PrdOnRun& p);
 
 nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
 // One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.

@@ -39,10 +39,10 @@ struct GlpDeleter {
 struct Endpoint {
   int joint;
   int corner;    // 0 = A, 1 = B
-  Vec2 X;        // block i's material point (initial configuration)
-  // Block j's material point: X, shared by both blocks at the start, unless a run started
-  // from a deformed configuration keeps the corner's offset there (PrdStart).
-  Vec2 Xj;
+  // The corner's material points on blocks i and j (initial configuration): the joint's end,
+  // shared by both blocks, unless a run started from a deformed configuration keeps the
+  // corner's offset there (PrdStart, start_from).
+  Vec2 X, Xj;
   bool closed = true;
   bool held = false;  // kept closed whatever the loads do (PrdOptions::hold_closed): its row an equality
 };
@@ -180,7 +180,7 @@ double corner_slack(const Model& m, size_t e);  // primal minus bound of that ro
 // Marks the corners named BLOCK/BLOCK:A held (Endpoint::held); throws naming the case for a name no corner has.
 void hold_corners(Model& m, const std::vector<std::string>& names);
 // Stage "start": places every block where a PrdStart's poses put it and sets each corner's
-// contact state (and, keeping offsets, block j's material point) from its gap there.
+// contact state from its gap there (and, keeping offsets, its material points).
 void start_from(Model& m, const PrdStart& start);
 // The held corners' normal forces from the LP just solved (N; negative: the hold pulls, a tension
 // no-tension masonry cannot give), as the record's "held_corners".
