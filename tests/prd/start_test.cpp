@@ -58,9 +58,9 @@ TEST(PrdStart, RestartedFromItsOwnRecordARigidRunGoesOnAsItDid) {
 // geometry the soft joint deforms to. From the early record with the offsets kept, the block
 // stands turned on its joint by the DEM's elastic rotation there, which grows with the tilt as
 // the weight's moment does: it topples before the rigid block and after the DEM. (Taken back at
-// the last equilibrium, the LP is unbounded at once: the block
-// stands turned on its joint beyond atan(b/h), and whether the LP has a collapse mechanism is a
-// matter of the configuration, not of the gaps the first step takes back.)
+// the last equilibrium, the LP is unbounded at once: the block stands turned on its joint beyond
+// atan(b/h), and whether the LP has a collapse mechanism is a matter of the configuration, not of
+// the gaps the first step takes back.)
 TEST(PrdStart, FromTheDemsSoftTiltedBlockPrdTopplesWhereTheDemDidOrAtTheRigidTiltAsCut) {
   const Case c = with_option(load_case(kBlock), "dem.stiffness_reduction", 10.0);
   const RunResult dem = dem_run(c, DemSettings::from_case(c));
