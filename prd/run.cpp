@@ -172,19 +172,6 @@ Solved solve_here(Walk& w) {
   sv.h_open = std::min(sv.h, w.tol_ev);
   update_lp(w.m, sv.h, sv.h, sv.h_open);
   sv.status = w.m.ncols == 0 ? LpStatus::optimal : solve(w.m);
-  // A corner left open within the contact tolerance (an event-driven move judges closings by
-  // their rates) is closed by the tolerance's definition; where the LP cannot keep it from
-  // closing faster than its open row allows, it is closed and the LP solved again. A start
-  // from a DEM's settled state (PrdStart), with gaps of 1e-6..1e-4 m at many corners, needs it.
-  if (sv.status == LpStatus::infeasible) {
-    bool closed_any = false;
-    for (Endpoint& e : w.m.ends)
-      if (!e.closed && w.m.gap(e) <= w.m.tol) e.closed = closed_any = true;
-    if (closed_any) {
-      update_lp(w.m, sv.h, sv.h, sv.h_open);
-      sv.status = solve(w.m);
-    }
-  }
   if (sv.status == LpStatus::optimal) {
     gaps_and_rates(w.m, sv.h, sv.h_open, w.gap, w.rate);
     const std::vector<char> next = closed_after(w.m, w.gap, w.rate, sv.h, sv.h_open, w.h_ref);
@@ -363,9 +350,12 @@ void take(Walk& w, const Solved& sv, const Step& st, RunResult& r) {
   advance(m, Path{w.cur.U, w.cur.dU}, st.h);
   std::vector<char> closed = closed_after(m, w.gap, w.rate, sv.h, st.h, w.h_ref);
   if (std::isfinite(st.shut.at)) closed[st.shut.corner] = 1;
-  if (!w.cur.dU.empty())  // off the first-order update, a corner's gap is what it is
-    for (size_t e = 0; e < m.ends.size(); ++e)
-      if (!m.ends[e].closed && m.gap(m.ends[e]) <= m.tol) closed[e] = 1;
+  // The rates predict the gaps to first order; a corner's gap is what the finite move left,
+  // and one within the tolerance is closed by the tolerance's definition (an open corner left
+  // a fraction of a micrometre from contact can make the next LP infeasible: a start from a
+  // DEM's settled state, with gaps of 1e-6..1e-4 m at many corners, did).
+  for (size_t e = 0; e < m.ends.size(); ++e)
+    if (!m.ends[e].closed && m.gap(m.ends[e]) <= m.tol) closed[e] = 1;
   std::vector<size_t> shut_now;
   for (size_t e = 0; e < m.ends.size(); ++e)
     if (closed[e] && !m.ends[e].closed) shut_now.push_back(e);
