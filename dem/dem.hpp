@@ -42,9 +42,6 @@ struct DemSnapshot {
   std::shared_ptr<const Data> data;
 };
 
-// corner_gap, the gap at a joint corner a DEM reports, is model/interfaces.hpp's: PRD started
-// from a DEM's configuration reads its corners by the same rule.
-
 // The simulator: build it from a case, then place the supports and cycle.
 class DemModel {
  public:
@@ -99,7 +96,8 @@ class DemModel {
   // Back to a saved state of this model (the cycle count and the timing keep counting).
   void restore(const DemSnapshot& s);
 
-  // Normal gap of each joint corner (A then B per joint), m (corner_gap; negative: overlap).
+  // Normal gap of each joint corner (A then B per joint), m (negative: overlap), by
+  // model/interfaces.hpp's corner_gap, the rule PRD started from a DEM's configuration reads too.
   std::vector<double> corner_gaps(const std::vector<Interface>& joints) const;
   // The current state as a step record (poses, reactions, open corners, joint forces, energy).
   // A corner is open when its gap exceeds open_gap beyond `gap_reference` (its gap in the
