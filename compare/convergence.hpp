@@ -42,12 +42,24 @@ struct Convergence {
 struct ConvergenceVerdict {
   bool complete = false;   // every run ended in a located collapse or max_steps
   double spread = NAN;     // (max - min) / default over the runs, NaN when a run failed
+  // The same over the runs at the default's joint stiffness (kn), the protocol's settings alone.
+  // The joints' stiffness belongs to the structure: a run at another kn may differ by the
+  // geometry its joints deform to (PRD on its configuration says), which no protocol removes.
+  double protocol_spread = NAN;
   double prd_error = NAN;  // (default - PRD) / PRD
   bool ok = false;         // complete, spread and PRD error within their limits
+  // Complete and the protocol spread within the limit: the DEM answers for the structure it was
+  // given, whatever the joints' stiffness and PRD's capacity then show.
+  bool protocol_converged = false;
   std::vector<std::string> problems;  // one sentence each, empty when ok
 };
 
 ConvergenceVerdict judge(const Convergence& c);
+// One word for the verdict, the same in the command's line and the study's files: "converged"
+// (every limit met), "converged over the protocol" (the protocol spread within its limit, the
+// joints' stiffness or PRD beyond one), "NOT shown converged"; a stiffness study "complete" or
+// "incomplete".
+const char* verdict_name(Study s, const ConvergenceVerdict& v);
 nlohmann::ordered_json convergence_json(const Convergence& c);
 std::string convergence_markdown(const Convergence& c);
 

@@ -92,8 +92,7 @@ int run_study(const Case& c, const DemSettings& base, Study kind, const Opts& o)
   write_file_atomic((out / (name + ".json")).string(), convergence_json(study).dump(1) + "\n");
   write_file_atomic((out / (name + ".md")).string(), convergence_markdown(study));
   const ConvergenceVerdict v = judge(study);
-  const char* verdict = kind == Study::stiffness ? (v.ok ? "complete" : "incomplete") : (v.ok ? "converged" : "NOT shown converged");
-  if (!o.quiet) std::fprintf(stderr, "dem %s: %s (%s)\n", name.c_str(), verdict, (out / (name + ".md")).c_str());
+  if (!o.quiet) std::fprintf(stderr, "dem %s: %s (%s)\n", name.c_str(), verdict_name(kind, v), (out / (name + ".md")).c_str());
   return v.ok ? kExitDone : kExitFailed;
 }
 

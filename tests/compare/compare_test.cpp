@@ -357,6 +357,53 @@ TEST(Convergence, ASpreadBeyondTheLimitNamesItsEndsAndPrdOnTheirConfigurations) 
       << v.problems[0];
 }
 
+// The joints' stiffness belongs to the structure: a spread that only the runs at other joints
+// make, with the runs at the default's joints within the limit, is converged over the protocol
+// (and still beyond the gate's limit), and so is a converged default that PRD does not meet; a
+// spread among the default's joints is not converged.
+TEST(Convergence, ASpreadOfTheJointsAloneIsConvergedOverTheProtocol) {
+  const auto study = [](double slow, double prd = 1.0) {
+    Convergence c;
+    c.prd_capacity = prd;
+    const auto add = [&](const std::string& name, double capacity, double kn) {
+      RunResult r;
+      r.status = RunStatus::collapse;
+      r.capacity = capacity;
+      r.settings = {{"kn", kn}};
+      c.entries.push_back({name, name, r, std::nullopt});
+    };
+    add("default", 1.00, 1e9);
+    add("slow", slow, 1e9);
+    add("soft", 0.97, 1e9 / 3);
+    add("stiff", 1.01, 3e9);
+    return c;
+  };
+  const ConvergenceVerdict a = judge(study(1.005));
+  EXPECT_FALSE(a.ok);
+  EXPECT_TRUE(a.protocol_converged);
+  EXPECT_NEAR(a.spread, 0.04, 1e-12);
+  EXPECT_NEAR(a.protocol_spread, 0.005, 1e-12);
+  EXPECT_STREQ(verdict_name(Study::convergence, a), "converged over the protocol");
+  ASSERT_EQ(a.problems.size(), 1u);
+  EXPECT_NE(a.problems[0].find("over the protocol's settings alone (the runs at the default's joint stiffness) by 0.50%"), std::string::npos)
+      << a.problems[0];
+  EXPECT_NE(convergence_markdown(study(1.005)).find("**Converged over the protocol**"), std::string::npos);
+  EXPECT_TRUE(convergence_json(study(1.005))["protocol_converged"].get<bool>());
+  EXPECT_EQ(convergence_json(study(1.005))["verdict"], "converged over the protocol");
+
+  const ConvergenceVerdict p = judge(study(1.005, 1.05));
+  EXPECT_TRUE(p.protocol_converged);
+  ASSERT_EQ(p.problems.size(), 2u);
+  EXPECT_NE(p.problems[1].find("differs from PRD's by -4.76%"), std::string::npos) << p.problems[1];
+
+  const ConvergenceVerdict b = judge(study(1.03));
+  EXPECT_FALSE(b.ok);
+  EXPECT_FALSE(b.protocol_converged);
+  EXPECT_NEAR(b.protocol_spread, 0.03, 1e-12);
+  EXPECT_STREQ(verdict_name(Study::convergence, b), "NOT shown converged");
+  EXPECT_NE(convergence_markdown(study(1.03)).find("**Not shown converged**"), std::string::npos);
+}
+
 TEST(Compare, ToleranceFileIsStrict) {
   EXPECT_THROW(parse_tolerances(R"({"capacty": 0.05})", "t.json"), std::runtime_error);
   EXPECT_THROW(parse_tolerances(R"({"capacity": "5%"})", "t.json"), std::runtime_error);
