@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Regenerates reports/dem-convergence/<case>.{md,json}: the DEM convergence studies of the three
-# standard scenes (masonry dem --convergence, dem/README.md): each case at its DEM settings and at
-# every setting that must not matter, with PRD beside them.
+# Regenerates reports/dem-convergence/<study>.{md,json}: the DEM convergence studies of the three
+# standard scenes and of the settlement scene at joints three and ten times softer (masonry dem
+# --convergence, dem/README.md): each at its DEM settings and at every setting that must not
+# matter, with PRD beside them.
 #
 #   bash reports/dem-convergence.sh [JOBS [--read-back]]   # JOBS runs at a time (default 2)
 #
