@@ -95,15 +95,14 @@ ConvergenceVerdict judge(const Convergence& c) {
     }
   }
   const double base = c.entries.front().run.capacity;
-  if (v.complete && base > 0) {
-    v.spread = (hi->run.capacity - lo->run.capacity) / base;
-    v.protocol_spread = (protocol_hi - protocol_lo) / base;
-  }
+  if (v.complete && base > 0) v.spread = (hi->run.capacity - lo->run.capacity) / base;
   if (c.prd_capacity && *c.prd_capacity > 0 && located(c.entries.front().run.status)) v.prd_error = (base - *c.prd_capacity) / *c.prd_capacity;
   if (c.study == Study::stiffness) {
     v.ok = v.complete;
     return v;
   }
+  // A stiffness study varies nothing but the joints: it has no protocol spread.
+  if (v.complete && base > 0) v.protocol_spread = (protocol_hi - protocol_lo) / base;
   const bool prd_ok = !c.prd_capacity || std::abs(v.prd_error) <= c.prd_limit;
   v.protocol_converged = v.complete && v.protocol_spread <= c.spread_limit;
   if (v.complete && !(v.spread <= c.spread_limit)) {

@@ -402,6 +402,12 @@ TEST(Convergence, ASpreadOfTheJointsAloneIsConvergedOverTheProtocol) {
   EXPECT_NEAR(b.protocol_spread, 0.03, 1e-12);
   EXPECT_STREQ(verdict_name(Study::convergence, b), "NOT shown converged");
   EXPECT_NE(convergence_markdown(study(1.03)).find("**Not shown converged**"), std::string::npos);
+
+  // A stiffness study varies only the joints: no protocol spread to report.
+  Convergence k = study(1.005);
+  k.study = Study::stiffness;
+  EXPECT_TRUE(std::isnan(judge(k).protocol_spread));
+  EXPECT_TRUE(convergence_json(k)["protocol_spread"].is_null());
 }
 
 TEST(Compare, ToleranceFileIsStrict) {
