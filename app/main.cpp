@@ -2,12 +2,14 @@
 #include <iostream>
 
 #include "model/case.hpp"
+#include "model/version.hpp"
 #include "app/command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"masonry: PRD limit analysis and rigid-block DEM of masonry structures, side by side"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Help for every subcommand");
+  app.set_version_flag("--version", masonry::version_text(), "The version and the git commit this build was made from");
   masonry::Commands commands;
 #ifdef MASONRY_HAVE_PRD_CLI
   masonry::add_prd_commands(app, commands);

@@ -1,10 +1,14 @@
 #include "report/document.hpp"
 
+#include "model/version.hpp"
 #include "report/escape.hpp"
 
 namespace masonry {
 
 namespace {
+
+// The last line of every report.
+Text written_by() { return {"Written by " + version_text() + "."}; }
 
 std::string md_text(const Text& t) {
   std::string o;
@@ -86,7 +90,7 @@ std::string markdown(const Document& d) {
       case Element::Kind::raw_html: break;
     }
   }
-  return o;
+  return o + md_text(written_by()) + "\n";
 }
 
 std::string html_body(const Document& d) {
@@ -121,7 +125,7 @@ std::string html_body(const Document& d) {
       case Element::Kind::raw_html: o += e.html; break;
     }
   }
-  return o;
+  return o + "<p>" + html_text(written_by()) + "</p>\n";
 }
 
 }  // namespace masonry

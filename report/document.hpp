@@ -46,6 +46,8 @@ struct Document {
   Element& last() { return body.back(); }
 };
 
+// Both end with the line that says which masonry wrote the report ("Written by masonry 0.1.0 (git
+// 96c2a98a1b2c)."), so every report records the version that made it.
 std::string markdown(const Document& d);
 // The page body (to go into html_page): the title as <h1>, then the elements.
 std::string html_body(const Document& d);

@@ -44,6 +44,8 @@ summarise() {  # case-name, steps to tabulate (step indices, "last" = the last s
     "$tmp/$name/results.json"
   echo
 }
+echo "Made by $("$exe" --version)."
+echo
 summarise pointed-arch "0 1 2 50 100 150 200 250 last"
 summarise cathedral-settlement "0 1 30 60 90 last"
 summarise cathedral-settlement-rotation "0 1 2 30 last"

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "model/version.hpp"
 #include "report/document.hpp"
 #include "report/escape.hpp"
 #include "report/format.hpp"
@@ -122,6 +123,7 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
 ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) {
   ojson j;
   j["format"] = "masonry-sweep-results/1";
+  j["version"] = version_text();
   j["units"] = "SI: capacity in m (the last stable d), time in s; friction angles in degrees";
   j["name"] = p.name;
   j["spec"] = p.source;

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "model/version.hpp"
 #include "report/document.hpp"
 #include "report/escape.hpp"
 #include "report/format.hpp"
@@ -230,6 +231,7 @@ std::vector<std::string> summary_lines(const Tradeoff& t) {
 ojson tradeoff_json(const Tradeoff& t) {
   ojson j;
   j["format"] = "masonry-tradeoff/1";
+  j["version"] = version_text();
   j["case"] = t.case_name;
   j["command"] = t.command;
   j["base"] = ojson::object();
