@@ -17,6 +17,7 @@
 #include "compare/compare.hpp"
 #include "compare/report.hpp"
 #include "model/io.hpp"
+#include "report/format.hpp"
 #include "runs/run.hpp"
 
 namespace masonry {
@@ -155,9 +156,10 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
   for (const RunResult& r : results) errored = errored || !located(r.status);
   for (size_t k = 0; k < rep.comparisons.size(); ++k) {
     const Comparison& cmp = rep.comparisons[k];
-    std::fprintf(stderr, "compare: %s: %s %.4g m, %s %.4g m (%+.1f%%), thrust difference max %.3g W rms %.3g W, times %.3g s / %.3g s\n",
-                 c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, cmp.b.label.c_str(), cmp.b.capacity, cmp.capacity_rel_diff * 100,
-                 cmp.thrust_max_diff, cmp.thrust_rms_diff, cmp.a.time_s, cmp.b.time_s);
+    // fmt: "n/a", never "nan", for what a run's results do not give (an outside solver's timing).
+    std::fprintf(stderr, "compare: %s: %s %.4g m, %s %.4g m (%s), thrust difference max %s W rms %s W, times %s s / %s s\n",
+                 c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, cmp.b.label.c_str(), cmp.b.capacity, fmt::pct(cmp.capacity_rel_diff).c_str(),
+                 fmt::g(cmp.thrust_max_diff).c_str(), fmt::g(cmp.thrust_rms_diff).c_str(), fmt::g(cmp.a.time_s).c_str(), fmt::g(cmp.b.time_s).c_str());
     for (const std::string& v : rep.violations[k]) std::cerr << "compare: limit exceeded: " << v << "\n";
     failed = failed || !rep.violations[k].empty();
   }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <set>
@@ -85,6 +86,15 @@ void bbox(const Case& c, Vec2& lo, Vec2& hi) {
       lo = lo.cwiseMin(v);
       hi = hi.cwiseMax(v);
     }
+}
+
+// Why a comparison needs what `a` or `b` does not give ("DEM gives no reactions"), or empty.
+std::string missing(const RunResult& a, const RunResult& b, const Comparison& k, const char* what,
+                    const std::function<bool(const RunResult&)>& gives) {
+  std::string who;
+  if (!gives(a)) who = k.a.label;
+  if (!gives(b)) who += (who.empty() ? "" : " and ") + k.b.label;
+  return who.empty() ? "" : "not compared: " + who + " give" + (who.find(" and ") == std::string::npos ? "s" : "") + " no " + what;
 }
 
 RunSummary summarise(const RunResult& r, const std::string& label, int min_state_records) {
@@ -372,8 +382,14 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
 
   // Thrust curves, support by support (matched by id), over the total weight.
   const double W = k.total_weight > 0 ? k.total_weight : 1.0;
+  k.thrust_skipped = missing(a, b, k, "reactions", [](const RunResult& r) {
+    for (const StepRecord& s : r.steps)
+      if (!s.reactions.empty()) return true;
+    return false;
+  });
+  k.hinges_skipped = missing(a, b, k, "joints", [](const RunResult& r) { return !r.joints.empty(); });
   std::vector<std::string> supports;
-  if (!ra.empty())
+  if (!ra.empty() && k.thrust_skipped.empty())
     for (const Reaction& x : ra.front()->reactions) supports.push_back(x.support);
   double sum2 = 0.0, where_diff = -1.0;
   size_t n2 = 0;
@@ -428,7 +444,7 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
   const double xc = 0.5 * (lo.x() + hi.x());
   const double tol = 1e-6 * std::max(1.0, scene_size(c));
   k.hinge_gap = std::max(settled_gap(a), settled_gap(b));
-  if (!ra.empty() && !rb.empty()) {
+  if (!ra.empty() && !rb.empty() && k.hinges_skipped.empty()) {
     std::set<double> done;
     for (double f : o.hinge_fractions) {
       HingeCheck h;
@@ -461,8 +477,11 @@ ojson to_json(const Comparison& k) {
   j["a"] = summary_json(k.a);
   j["b"] = summary_json(k.b);
   j["total_weight"] = json_number(k.total_weight);
-  j["capacity"] = {{"a", json_number(k.a.capacity)}, {"b", json_number(k.b.capacity)}, {"relative_difference", json_number(k.capacity_rel_diff)}};
+  j["capacity"] = {{"a", json_number(k.a.capacity)}, {"b", json_number(k.b.capacity)}, {"relative_difference", json_number(k.capacity_rel_diff)},
+                   {"difference", json_number(k.b.capacity - k.a.capacity)}};
   ojson t;
+  t["compared"] = k.thrust_skipped.empty();
+  if (!k.thrust_skipped.empty()) t["note"] = k.thrust_skipped;
   t["common_range"] = ojson::array({0.0, json_number(k.d_max)});
   t["max_difference"] = json_number(k.thrust_max_diff);
   t["max_difference_at"] = {{"d", json_number(k.thrust_max_d)}, {"component", k.thrust_max_where}};
@@ -512,26 +531,32 @@ ojson to_json(const Comparison& k) {
                   {"mirror", h.mirror},
                   {"joints_apart", apart(h.shift)}});
   }
-  j["hinges"] = {{"symmetric", k.symmetric}, {"min_opening", json_number(k.hinge_gap)}, {"max_joints_apart", kMaxHingeShift}, {"checks", hc}};
+  j["hinges"] = {{"compared", k.hinges_skipped.empty()}};
+  if (!k.hinges_skipped.empty()) j["hinges"]["note"] = k.hinges_skipped;
+  j["hinges"].update(ojson{{"symmetric", k.symmetric}, {"min_opening", json_number(k.hinge_gap)}, {"max_joints_apart", kMaxHingeShift}, {"checks", hc}});
   j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }
 
 std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances& t) {
   std::vector<std::string> out;
-  if (t.capacity) {
-    const double r = k.capacity_rel_diff;
-    if (!std::isfinite(r) || std::abs(r) > *t.capacity)
+  if (t.capacity || t.capacity_abs) {
+    const double diff = std::abs(k.b.capacity - k.a.capacity);
+    const double limit = std::max(t.capacity_abs.value_or(0.0), t.capacity.value_or(0.0) * std::abs(k.a.capacity));
+    std::string limits;
+    if (t.capacity) limits = fmt(*t.capacity * 100, 3) + "%";
+    if (t.capacity_abs) limits += (limits.empty() ? "" : " or ") + fmt(*t.capacity_abs) + " m";
+    if (!std::isfinite(diff) || diff > limit)
       out.push_back("capacity: " + k.a.label + " " + fmt(k.a.capacity) + " m, " + k.b.label + " " + fmt(k.b.capacity) +
-                    " m: relative difference " + fmt(std::abs(r) * 100, 3) + "% > limit " + fmt(*t.capacity * 100, 3) + "%");
+                    " m: difference " + fmt(diff) + " m, relative " + fmt(std::abs(k.capacity_rel_diff) * 100, 3) + "% > limit " + limits);
   }
-  if (t.thrust) {
+  if (t.thrust && k.thrust_skipped.empty()) {
     const double m = k.thrust_max_diff;
     if (!std::isfinite(m) || m > *t.thrust)
       out.push_back("thrust: largest support reaction difference " + fmt(m, 3) + " W (" + k.thrust_max_where + " at d = " +
                     fmt(k.thrust_max_d) + " m) > limit " + fmt(*t.thrust, 3) + " W");
   }
-  if (t.hinges) {
+  if (t.hinges && k.hinges_skipped.empty()) {
     if (k.hinges.empty()) out.push_back("hinges: no common range to compare hinge locations on");
     const std::string why = t.hinge_shift == 0 ? (k.symmetric ? " (not mirror images either)" : "")
                                                : " (none within " + joints_text(t.hinge_shift) + " of the other's along a ring" +
@@ -565,10 +590,10 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
     const ojson& v = it.value();
-    if (key == "capacity" || key == "thrust") {
+    if (key == "capacity" || key == "capacity_abs" || key == "thrust") {
       if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
         throw std::runtime_error(source + ": \"" + key + "\" must be a non-negative number");
-      (key == "capacity" ? t.capacity : t.thrust) = v.get<double>();
+      (key == "capacity" ? t.capacity : key == "capacity_abs" ? t.capacity_abs : t.thrust) = v.get<double>();
     } else if (key == "hinges") {
       if (!v.is_boolean()) throw std::runtime_error(source + ": \"hinges\" must be true or false");
       t.hinges = v.get<bool>();
@@ -579,7 +604,7 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
     } else if (key == "comment" || key == "description") {
       // free text for people
     } else {
-      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, thrust, hinges, hinge_shift, comment)");
+      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, capacity_abs, thrust, hinges, hinge_shift, comment)");
     }
   }
   return t;

@@ -24,10 +24,14 @@ struct Tolerances {
   // opens is not decided by the mechanics: PRD itself moves such hinges by a joint when its step
   // is halved (compare/README.md, "Hinges one joint apart").
   int hinge_shift = 0;
+  // Largest |cap_b - cap_a|, m. With `capacity` too, the capacities may differ by the larger of
+  // the two limits (as a catalogue's tolerance): an absolute limit judges a reference capacity
+  // near 0, or one step of an incremental run.
+  std::optional<double> capacity_abs = std::nullopt;
 };
 // The largest hinge_shift looked for (HingeCheck::shift is -1 beyond it).
 inline constexpr int kMaxHingeShift = 3;
-// Parses {"capacity": 0.05, "thrust": 0.10, "hinges": true, "hinge_shift": 1}; unknown keys and
+// Parses {"capacity": 0.05, "capacity_abs": 0.002, "thrust": 0.10, "hinges": true, "hinge_shift": 1}; unknown keys and
 // wrong types throw std::runtime_error naming the file and the key.
 Tolerances parse_tolerances(const std::string& text, const std::string& source);
 Tolerances load_tolerances(const std::string& path);
@@ -92,6 +96,10 @@ struct Comparison {
   double hinge_gap = 0.0;          // m, opening beyond the settled gap a hinge needs (settled_gap)
   std::vector<HingeCheck> hinges;
   double time_ratio = 0.0;         // time_b / time_a (NaN when time_a is 0)
+  // What a run's results do not give is not compared (a results file need give only its
+  // capacity and steps): the reason, or empty when compared. Thrust curves need every run's
+  // reactions, hinges its joints and open corners.
+  std::string thrust_skipped, hinges_skipped;
 };
 
 struct CompareOptions {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "compare/report.hpp"
+#include "model/version.hpp"
 #include "report/document.hpp"
 #include "report/format.hpp"
 
@@ -131,6 +132,7 @@ ojson convergence_json(const Convergence& c) {
   const ConvergenceVerdict v = judge(c);
   ojson j;
   j["format"] = "masonry-dem-convergence/1";
+  j["version"] = version_text();
   j["study"] = study_name(c.study);
   j["units"] = "m for capacities and d, s for times";
   j["case"] = c.case_name;
@@ -154,7 +156,7 @@ ojson convergence_json(const Convergence& c) {
     r["capacity"] = located(e.run.status) ? ojson(e.run.capacity) : ojson(nullptr);
     r["against_default"] = located(e.run.status) && base > 0 ? json_number((e.run.capacity - base) / base) : ojson(nullptr);
     r["against_prd"] = located(e.run.status) && c.prd_capacity ? json_number((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : ojson(nullptr);
-    r["bracket_width"] = e.run.extra.contains("collapse_bracket") ? e.run.extra["collapse_bracket"]["width"] : ojson(nullptr);
+    r["bracket_width"] = e.run.collapse_bracket ? json_number(e.run.collapse_bracket->width) : ojson(nullptr);
     r["cpu_s"] = e.run.timing.total_s;
     r["cycles"] = e.run.timing.cycles;
     r["message"] = e.run.message;
@@ -202,7 +204,7 @@ std::string convergence_markdown(const Convergence& c) {
   const double base = c.entries.empty() ? NAN : c.entries.front().run.capacity;
   for (const ConvergenceEntry& e : c.entries) {
     const bool ok = located(e.run.status);
-    const double width = e.run.extra.contains("collapse_bracket") ? e.run.extra["collapse_bracket"]["width"].get<double>() : NAN;
+    const double width = e.run.collapse_bracket ? e.run.collapse_bracket->width : NAN;
     t.rows.push_back({e.name, e.what, status_name(e.run.status), ok ? fmt::number(e.run.capacity, "%.4f", e.run.capacity) : "n/a",
                       ok && base > 0 ? pct((e.run.capacity - base) / base) : "n/a",
                       ok && c.prd_capacity ? pct((e.run.capacity - *c.prd_capacity) / *c.prd_capacity) : "n/a", fmt::mm(width, 2),

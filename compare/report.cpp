@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "compare/svg.hpp"
+#include "model/version.hpp"
 #include "report/document.hpp"
 #include "report/format.hpp"
 #include "report/html.hpp"
@@ -94,8 +95,9 @@ std::vector<Figure> report_figures(const Report& r) {
     const ReportRun& A = r.runs[0];
     const ReportRun& B = r.runs[k + 1];
     const std::string n = std::to_string(k + 1);
-    figs.push_back({"figures/thrust-" + n + ".svg", svg_thrust(cmp, *A.run, *B.run),
-                    "Thrust curves: " + A.label + " (solid) and " + B.label + " (dashed)"});
+    if (cmp.thrust_skipped.empty())
+      figs.push_back({"figures/thrust-" + n + ".svg", svg_thrust(cmp, *A.run, *B.run),
+                      "Thrust curves: " + A.label + " (solid) and " + B.label + " (dashed)"});
     int j = 0;
     for (double d : figure_ds(cmp)) {
       const StepRecord* sa = record_at(*A.run, d);
@@ -121,11 +123,13 @@ ojson report_json(const Report& r) {
   ojson j;
   j["format"] = "masonry-comparison/1";
   j["units"] = "SI: m, N, s; thrust as reaction / total weight";
+  j["version"] = version_text();
   j["case"] = r.c->name;
   ojson runs = ojson::array();
   for (const ReportRun& rr : r.runs) {
     runs.push_back({{"label", rr.label},
                     {"method", rr.run->method},
+                    {"version", rr.run->version.empty() ? version_text() : rr.run->version},
                     {"dir", rr.dir},
                     {"capacity", json_number(rr.run->capacity)},
                     {"collapsed", rr.run->collapsed},
@@ -141,6 +145,7 @@ ojson report_json(const Report& r) {
     if (r.tolerances_checked) {
       ojson lim;
       lim["capacity"] = r.tolerances.capacity ? json_number(*r.tolerances.capacity) : ojson(nullptr);
+      lim["capacity_abs"] = r.tolerances.capacity_abs ? json_number(*r.tolerances.capacity_abs) : ojson(nullptr);
       lim["thrust"] = r.tolerances.thrust ? json_number(*r.tolerances.thrust) : ojson(nullptr);
       lim["hinges"] = r.tolerances.hinges;
       lim["hinge_shift"] = r.tolerances.hinge_shift;
@@ -243,7 +248,9 @@ void deformed_section(Document& d, const Report& r) {
 void tolerance_section(Document& d, const Report& r) {
   if (!r.tolerances_checked) return;
   d.heading(2, {"Tolerance checks"});
-  d.paragraph({"Limits: capacity " + (r.tolerances.capacity ? fmt::g(*r.tolerances.capacity * 100) + "%" : std::string("not checked")) +
+  std::string capacity = r.tolerances.capacity ? fmt::g(*r.tolerances.capacity * 100) + "%" : std::string();
+  if (r.tolerances.capacity_abs) capacity += (capacity.empty() ? "" : " or ") + fmt::mm(*r.tolerances.capacity_abs, 1) + " mm";
+  d.paragraph({"Limits: capacity " + (capacity.empty() ? std::string("not checked") : capacity) +
                ", thrust " + (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) + ", hinges " +
                (!r.tolerances.hinges            ? std::string("not checked")
                 : r.tolerances.hinge_shift == 0 ? std::string("must match")
@@ -332,7 +339,8 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
     p += " At d = 0 the structure is statically indeterminate: PRD reports one admissible force state among many, the DEM "
          "the one its settling under gravity finds, so a difference there is expected (the paper, Section 4: PRD gives \"just one of "
          "the infinite admissible stress states\" where the structure is statically indeterminate).";
-  d.paragraph({p});
+  // A run without reactions (an outside solver's minimal results): said, and no empty table.
+  d.paragraph({cmp.thrust_skipped.empty() ? p : "Thrust curves " + cmp.thrust_skipped + "."});
   Table sup;
   sup.head = {"support", "largest difference (W)", "H at d = " + fmt::mm(cmp.d_max) + " mm, " + cmp.a.label + " / " + cmp.b.label,
               "V at d = " + fmt::mm(cmp.d_max) + " mm"};
@@ -342,7 +350,7 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
     sup.rows.push_back({s.support, fmt::g(s.max_diff), e ? fmt::g(s.h_a.back()) + " / " + fmt::g(s.h_b.back()) : "n/a",
                         e ? fmt::g(s.v_a.back()) + " / " + fmt::g(s.v_b.back()) : "n/a"});
   }
-  d.table(std::move(sup));
+  if (!sup.rows.empty()) d.table(std::move(sup));
   if (const Figure* f = find_figure(figures, "figures/thrust-" + n + ".svg"))
     // The page's copy carries the cursor the slider moves.
     d.figure(f->file, f->caption, page ? svg_thrust(cmp, *r.runs[0].run, *r.runs[k + 1].run, true) : std::string());
@@ -350,6 +358,7 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   d.paragraph({"d (mm) where the set of open joint corners changes (a state held for a single record is taken as flicker and not counted):"});
   d.list({{{cmp.a.label + ": " + changes_mm(cmp.a)}, {}}, {{cmp.b.label + ": " + changes_mm(cmp.b)}, {}}});
   d.heading(3, {"Hinges"});
+  if (!cmp.hinges_skipped.empty()) d.paragraph({"Hinges " + cmp.hinges_skipped + " (open corners name joints)."});
   d.paragraph({"A hinge is a joint with exactly one open corner; listed as ", Cell("block/block:corner", CellStyle::code),
                std::string(" (the joint's two blocks and the corner, A or B, it turns about) with, in brackets, how far its open "
                            "corner has opened since d = 0, in mm. ") +
@@ -378,7 +387,7 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
                       : x.shift > 0             ? Cell("no (" + apart + ")", CellStyle::strong)
                                                 : Cell("no", CellStyle::strong)});
   }
-  d.table(std::move(h));
+  if (!h.rows.empty()) d.table(std::move(h));
   // Static drawings at chosen steps: the Markdown's; the page has the slider instead.
   d.heading(3, {"The structure at chosen steps"}).last().medium = Medium::markdown;
   d.paragraph({"Blocks on the deformed geometry (supports hatched), cracked joints bold, hinges as red rings, joint resultants in blue "

@@ -171,8 +171,8 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                      const double t = part.timing.total_s;
                      const double left = st.index > 0 ? t / st.index * std::max(0, s.max_steps - st.index) : 0.0;
                      std::fprintf(stderr, "dem: step %d d=%.6g m  cycles %lld (total %lld)  unbalanced %.2e  %s  %.0f s, at most %.0f s more\n",
-                                  st.index, st.d, st.extra.value("cycles", 0LL), part.timing.cycles,
-                                  st.extra.value("unbalanced_ratio", 0.0), st.extra.value("hold_end", std::string("?")).c_str(), t, left);
+                                  st.index, st.d, st.hold ? st.hold->cycles : 0LL, part.timing.cycles,
+                                  st.hold ? st.hold->unbalanced_ratio : 0.0, st.hold ? st.hold->hold_end.c_str() : "?", t, left);
                    }});
                    if (!o->quiet)
                      std::fprintf(stderr, "dem: %s, capacity %.6g m after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n",

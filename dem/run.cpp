@@ -65,7 +65,7 @@ struct Run {
   // equilibrium off it; from there they are step long, up to max_steps x step.
   int k = 1;
   bool on_grid = true;
-  nlohmann::ordered_json unconfirmed = nlohmann::ordered_json::array();
+  std::vector<UnconfirmedFailure> unconfirmed;
   // The run's clocks, without the time spent handing out results.
   std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
   double cpu0 = thread_cpu_s();
@@ -81,7 +81,7 @@ struct Failure {
   double d = 0;       // where it failed
   double from = 0;    // the equilibrium the failed attempt started from
   DemSnapshot state;  // the failed state
-  nlohmann::ordered_json trials = nlohmann::ordered_json::array();
+  std::vector<BracketTrial> trials;
 };
 
 void record_settings(Run& u) {
@@ -114,25 +114,26 @@ void record_settings(Run& u) {
 void sync_timing(Run& u) {
   u.r.timing.cycles = u.m.cycles();
   u.r.timing.total_s = thread_cpu_s() - u.cpu0 - u.io_cpu_s;
-  u.r.extra["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - u.t0).count() - u.io_s;
+  u.r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - u.t0).count() - u.io_s;
 }
 
 // Records the current state (after a hold) and hands the results out.
 void emit(Run& u, const HoldOutcome& h, long long cycles, long long move_cycles, bool bracketing, double lag) {
   StepRecord rec = u.m.record(u.joints, u.settled_gaps);
   rec.index = u.index++;
-  rec.extra["settled"] = h.end == HoldEnd::equilibrium;
-  rec.extra["hold_end"] = dem::hold_end_name(h.end);
-  if (bracketing) rec.extra["bracket"] = true;
-  rec.extra["cycles"] = cycles;
-  rec.extra["move_cycles"] = move_cycles;
-  rec.extra["lag"] = lag;
-  rec.extra["hold_time"] = h.time;
-  rec.extra["unbalanced_ratio"] = u.m.unbalanced_ratio();
-  rec.extra["max_speed"] = u.m.max_speed();
-  rec.extra["drift"] = h.drift;
-  rec.extra["contact_points"] = u.m.contact_points();
-  rec.extra["max_overlap"] = u.m.max_overlap();
+  rec.settled = h.end == HoldEnd::equilibrium;
+  DemHold& x = rec.hold.emplace();
+  x.hold_end = dem::hold_end_name(h.end);
+  x.bracket = bracketing;
+  x.cycles = cycles;
+  x.move_cycles = move_cycles;
+  x.lag = lag;
+  x.hold_time = h.time;
+  x.unbalanced_ratio = u.m.unbalanced_ratio();
+  x.max_speed = u.m.max_speed();
+  x.drift = h.drift;
+  x.contact_points = u.m.contact_points();
+  x.max_overlap = u.m.max_overlap();
   require_finite(rec);
   u.r.steps.push_back(std::move(rec));
   u.r.timing.cycles = u.m.cycles();
@@ -213,7 +214,7 @@ std::optional<Failure> increments(Run& u) {
       f.attempt = a;
       f.d = d1;
       f.from = u.d_eq;
-      f.trials.push_back({{"d", d1}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}});
+      f.trials.push_back({d1, dem::hold_end_name(a.hold.end), a.cycles});
       f.state = u.m.save();
       return f;
     }
@@ -232,7 +233,7 @@ void bracket(Run& u, Failure& f) {
     u.speed = 0;
     const double mid = 0.5 * (u.d_eq + f.d);
     const Attempt a = attempt(u, u.d_eq, mid);
-    f.trials.push_back({{"d", mid}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}});
+    f.trials.push_back({mid, dem::hold_end_name(a.hold.end), a.cycles});
     if (a.hold.end == HoldEnd::equilibrium) {
       settled_at(u, a, mid, true);
     } else {
@@ -260,9 +261,9 @@ bool confirm(Run& u, Failure& f) {
   // smaller, a move under 1% of the step, takes ln 100 = 4.6 more growth times to reach the
   // same size.)
   const Attempt a = attempt(u, u.d_eq, f.d, 4 * f.attempt.hold.cycles);
-  f.trials.push_back({{"d", f.d}, {"end", dem::hold_end_name(a.hold.end)}, {"cycles", a.cycles}, {"confirm", true}});
+  f.trials.push_back({f.d, dem::hold_end_name(a.hold.end), a.cycles, true});
   if (a.hold.end == HoldEnd::equilibrium) {
-    u.unconfirmed.push_back({{"d", f.d}, {"reached_from", f.from}, {"settled_from", u.d_eq}});
+    u.unconfirmed.push_back({f.d, f.from, u.d_eq});
     settled_at(u, a, f.d, true);
     u.on_grid = false;
     return false;
@@ -276,11 +277,11 @@ bool confirm(Run& u, Failure& f) {
 void close(Run& u, const Failure& f) {
   u.m.restore(f.state);
   emit(u, f.attempt, u.bracket > 0);
-  u.r.extra["collapse_bracket"] = {{"equilibrium", u.d_eq}, {"failed", f.d}, {"width", f.d - u.d_eq}, {"trials", f.trials}};
+  u.r.collapse_bracket = CollapseBracket{u.d_eq, f.d, f.d - u.d_eq, f.trials};
   // A collapse shown anywhere beyond the capacity makes the run a collapse; the bracket's upper
   // end may still be a hold that had not decided when the cap came.
   bool any_collapse = false;
-  for (const auto& t : f.trials) any_collapse = any_collapse || t["end"] == "collapse";
+  for (const auto& t : f.trials) any_collapse = any_collapse || t.end == "collapse";
   u.r.collapsed = any_collapse;
   u.r.status = u.r.collapsed ? RunStatus::collapse : RunStatus::undecided;
   if (!u.r.collapsed) {
@@ -323,7 +324,7 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
         close(u, *f);
         break;
       }
-      if (!u.unconfirmed.empty()) r.extra["unconfirmed_failures"] = u.unconfirmed;
+      r.unconfirmed_failures = u.unconfirmed;
     }
   } catch (const std::exception& e) {
     r.status = RunStatus::error;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -432,6 +433,9 @@ Case parse_case(const std::string& text, const std::string& source) {
 }
 
 Case load_case(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw CaseError(path + ": a directory, not a case file (masonry-case/1 JSON; `compare CASE --runs DIR DIR` takes the case first)");
   const std::optional<std::string> text = read_text(path);
   if (!text) throw CaseError(path + ": cannot open the case file");
   return parse_case(*text, path);

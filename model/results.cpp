@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/version.hpp"
+
 namespace masonry {
 
 using ojson = nlohmann::ordered_json;
@@ -43,7 +45,16 @@ std::optional<RunStatus> parse_status(const std::string& name) {
 
 bool located(RunStatus s) { return s == RunStatus::collapse || s == RunStatus::max_steps; }
 
-bool is_equilibrium(const RunResult& r, const StepRecord& s) { return r.method != "dem" || s.extra.value("settled", false); }
+const char* event_kind_name(EventKind k) {
+  switch (k) {
+    case EventKind::open: return "open";
+    case EventKind::close: return "close";
+    case EventKind::collapse: return "collapse";
+  }
+  return "?";
+}
+
+bool is_equilibrium(const RunResult&, const StepRecord& s) { return s.settled.value_or(true); }
 
 const StepRecord* last_equilibrium(const RunResult& r, double d) {
   const double eps = 1e-9 * std::max(1.0, std::abs(d));
@@ -55,10 +66,69 @@ const StepRecord* last_equilibrium(const RunResult& r, double d) {
 
 std::ostream& operator<<(std::ostream& o, RunStatus s) { return o << status_name(s); }
 
+namespace {
+const char* corner_letter(int corner) { return corner == 0 ? "A" : "B"; }
+
+ojson corner_json(const CornerRef& x) { return {{"joint", x.joint}, {"corner", corner_letter(x.corner)}}; }
+
+ojson poses_json(const std::vector<Pose>& poses) {
+  ojson po = ojson::array();
+  for (const Pose& p : poses) po.push_back(ojson::array({json_number(p.x), json_number(p.y), json_number(p.angle)}));
+  return po;
+}
+
+// The fields of the DEM's hold, in the step, in the order the DEM has always written them.
+void write_hold(const DemHold& h, ojson& js) {
+  js["hold_end"] = h.hold_end;
+  if (h.bracket) js["bracket"] = true;
+  js["cycles"] = h.cycles;
+  js["move_cycles"] = h.move_cycles;
+  js["lag"] = json_number(h.lag);
+  js["hold_time"] = json_number(h.hold_time);
+  js["unbalanced_ratio"] = json_number(h.unbalanced_ratio);
+  js["max_speed"] = json_number(h.max_speed);
+  js["drift"] = json_number(h.drift);
+  js["contact_points"] = h.contact_points;
+  js["max_overlap"] = json_number(h.max_overlap);
+}
+
+ojson event_json(const Event& e, const RunResult& r, const Case& c) {
+  ojson ev = {{"kind", event_kind_name(e.kind)}, {"d", json_number(e.d)}, {"within", json_number(e.within)}};
+  ev["joints"] = ojson::array();
+  for (const CornerRef& x : e.corners) {
+    ojson jx = corner_json(x);
+    const JointInfo& f = r.joints.at(x.joint);
+    jx["blocks"] = {c.blocks[f.i].id, c.blocks[f.j].id};
+    ev["joints"].push_back(jx);
+  }
+  return ev;
+}
+
+ojson bracket_json(const CollapseBracket& b) {
+  ojson trials = ojson::array();
+  for (const BracketTrial& t : b.trials) {
+    ojson x = {{"d", json_number(t.d)}, {"end", t.end}, {"cycles", t.cycles}};
+    if (t.confirm) x["confirm"] = true;
+    trials.push_back(x);
+  }
+  return {{"equilibrium", json_number(b.equilibrium)}, {"failed", json_number(b.failed)}, {"width", json_number(b.width)}, {"trials", trials}};
+}
+}  // namespace
+
+ojson mechanism_json(const Mechanism& m, const Case& c) {
+  ojson out;
+  out["open_corners"] = ojson::array();
+  for (const CornerRef& x : m.open_corners) out["open_corners"].push_back(corner_json(x));
+  out["moving_blocks"] = ojson::array();
+  for (int b : m.moving_blocks) out["moving_blocks"].push_back(c.blocks.at(b).id);
+  return out;
+}
+
 ojson to_json(const RunResult& r, const Case& c) {
   ojson j;
   j["format"] = "masonry-results/1";
   j["units"] = "SI: m, N, J, s, rad";
+  j["version"] = r.version.empty() ? version_text() : r.version;
   j["method"] = r.method;
   j["case"] = r.case_name;
   j["capacity"] = json_number(r.capacity);
@@ -97,20 +167,28 @@ ojson to_json(const RunResult& r, const Case& c) {
     js["d"] = json_number(s.d);
     js["energy"] = json_number(s.energy);
     ojson oc = ojson::array();
-    for (const OpenCorner& o : s.open_corners) oc.push_back({{"joint", o.joint}, {"corner", o.corner == 0 ? "A" : "B"}, {"gap", json_number(o.gap)}});
+    for (const OpenCorner& o : s.open_corners) oc.push_back({{"joint", o.joint}, {"corner", corner_letter(o.corner)}, {"gap", json_number(o.gap)}});
     js["open_corners"] = oc;
     js["cracked"] = s.cracked;
     ojson re = ojson::array();
     for (const Reaction& x : s.reactions) re.push_back({{"support", x.support}, {"force", vec(x.force)}, {"moment", json_number(x.moment)}});
     js["reactions"] = re;
-    ojson po = ojson::array();
-    for (const Pose& p : s.poses) po.push_back(ojson::array({json_number(p.x), json_number(p.y), json_number(p.angle)}));
-    js["poses"] = po;
+    js["poses"] = poses_json(s.poses);
     ojson fo = ojson::array();
     for (const JointForce& f : s.forces)
       fo.push_back({{"joint", f.joint}, {"normal", json_number(f.normal)}, {"shear", json_number(f.shear)}, {"point", vec(f.point)}, {"n", vec(f.n)}});
     js["forces"] = fo;
-    for (auto it = s.extra.begin(); it != s.extra.end(); ++it) js[it.key()] = it.value();
+    if (s.settled) js["settled"] = *s.settled;
+    if (s.hold) write_hold(*s.hold, js);
+    if (s.lp) {
+      js["lp_primal"] = json_number(s.lp->primal);
+      js["lp_dual"] = json_number(s.lp->dual);
+    }
+    if (!s.held_corners.empty()) {
+      ojson held = ojson::array();
+      for (const HeldCorner& h : s.held_corners) held.push_back({{"corner", h.corner}, {"force", json_number(h.force)}});
+      js["held_corners"] = held;
+    }
     if (s.sliding)
       js["sliding"] = {{"demand_angle", json_number(s.sliding->demand_angle)},
                        {"demand_joint", s.sliding->demand_joint},
@@ -119,7 +197,25 @@ ojson to_json(const RunResult& r, const Case& c) {
     steps.push_back(js);
   }
   j["steps"] = steps;
-  for (auto it = r.extra.begin(); it != r.extra.end(); ++it) j[it.key()] = it.value();
+  if (r.events) {
+    ojson ev = ojson::array();
+    for (const Event& e : *r.events) ev.push_back(event_json(e, r, c));
+    j["events"] = ev;
+  }
+  if (r.collapse) {
+    ojson x = mechanism_json(r.collapse->mechanism, c);
+    x["d"] = json_number(r.collapse->d);
+    x["poses"] = poses_json(r.collapse->poses);
+    j["collapse"] = x;
+  }
+  if (r.wall_s) j["wall_s"] = json_number(*r.wall_s);
+  if (r.collapse_bracket) j["collapse_bracket"] = bracket_json(*r.collapse_bracket);
+  if (!r.unconfirmed_failures.empty()) {
+    ojson u = ojson::array();
+    for (const UnconfirmedFailure& f : r.unconfirmed_failures)
+      u.push_back({{"d", json_number(f.d)}, {"reached_from", json_number(f.reached_from)}, {"settled_from", json_number(f.settled_from)}});
+    j["unconfirmed_failures"] = u;
+  }
   if (r.sliding) {
     const SlidingSummary& x = *r.sliding;
     ojson o = ojson::object();

@@ -61,17 +61,57 @@ struct SlidingSummary {
   long long lp_solves = 0;              // the check's feasibility LPs
 };
 
+// A joint corner: index into RunResult::joints and the corner (0 = A, 1 = B).
+struct CornerRef {
+  int joint = -1;
+  int corner = 0;
+};
+
+// PRD: the optima of the step's LP, the loads' potential energy over the step (J), primal and
+// dual; LP duality makes them equal (validate's duality_gap benchmarks).
+struct LpOptima {
+  double primal = 0.0;  // written as lp_primal
+  double dual = 0.0;    // written as lp_dual
+};
+
+// PRD with corners held closed (prd.hold_closed): a held corner's force in the step's force state.
+struct HeldCorner {
+  std::string corner;  // "BLOCK/BLOCK:A", as the results name corners
+  double force = 0.0;  // N, negative: a tension
+};
+
+// The DEM's hold that ended a record (dem/README.md, "The quasi-static protocol"): how it ended
+// and what it cost. The names are the fields results.json writes in the step.
+struct DemHold {
+  std::string hold_end;           // "equilibrium", "collapse" or "undecided"
+  bool bracket = false;           // a trial of the collapse bracket
+  long long cycles = 0;           // of the hold
+  long long move_cycles = 0;      // of the move before it
+  double lag = 0.0;               // m: how far the structure lagged the supports at the end of the move
+  double hold_time = 0.0;         // s, model time of the hold
+  double unbalanced_ratio = 0.0;  // largest unbalanced force over the block's weight
+  double max_speed = 0.0;         // m/s
+  double drift = 0.0;             // m, largest block travel during the hold
+  long long contact_points = 0;
+  double max_overlap = 0.0;       // m
+};
+
 struct StepRecord {
   int index = 0;     // 0 = initial configuration
   double d = 0.0;    // path parameter after this step, m
-  double energy = 0.0;  // total potential energy of the loads relative to the start, J
+  double energy = 0.0;  // total potential energy of the loads relative to the start, J (NaN: not given)
   std::vector<OpenCorner> open_corners;
   std::vector<int> cracked;          // joints with at least one open corner
   std::vector<Reaction> reactions;   // one per support block
   std::vector<Pose> poses;           // one per block (supports included), in case order
   std::vector<JointForce> forces;    // one per joint carrying force
+  // Whether the record is an equilibrium; absent: it is. The DEM writes it for every record
+  // (false: the failed state that closes a run).
+  std::optional<bool> settled;
+  std::optional<DemHold> hold;          // the DEM
+  std::optional<LpOptima> lp;           // PRD
+  std::vector<HeldCorner> held_corners; // PRD with corners held closed
   std::optional<SlidingCheck> sliding;  // PRD with the sliding check
-  nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // method-specific fields
 };
 
 struct JointInfo {
@@ -108,11 +148,51 @@ std::optional<RunStatus> parse_status(const std::string& name);
 bool located(RunStatus s);
 std::ostream& operator<<(std::ostream& o, RunStatus s);  // its name (test messages, logs)
 
+// A change of mechanism (PRD): a closed corner opens, an open one closes, or the collapse.
+enum class EventKind { open, close, collapse };
+const char* event_kind_name(EventKind k);
+struct Event {
+  EventKind kind = EventKind::open;
+  double d = 0.0;       // m
+  double within = 0.0;  // m: the event lies in (d - within, d]
+  std::vector<CornerRef> corners;  // written as "joints", with the joint's blocks
+};
+
+// A collapse mechanism (PRD): the corners it opens and the blocks it moves.
+struct Mechanism {
+  std::vector<CornerRef> open_corners;
+  std::vector<int> moving_blocks;  // block indices (written as ids)
+};
+// PRD's collapse: the mechanism on the configuration at d, and that configuration.
+struct Collapse {
+  Mechanism mechanism;
+  double d = 0.0;           // m
+  std::vector<Pose> poses;  // one per block
+};
+
+// The DEM's collapse bracket (dem/README.md): the last equilibrium, the failed increment's end,
+// and every trial that narrowed it.
+struct BracketTrial {
+  double d = 0.0;         // m
+  std::string end;        // how its hold ended: "equilibrium", "collapse" or "undecided"
+  long long cycles = 0;
+  bool confirm = false;   // the confirming hold of DemSettings::confirm_collapse
+};
+struct CollapseBracket {
+  double equilibrium = 0.0, failed = 0.0, width = 0.0;  // m
+  std::vector<BracketTrial> trials;
+};
+// A failure the confirming hold did not confirm (DemSettings::confirm_collapse): the run went on.
+struct UnconfirmedFailure {
+  double d = 0.0, reached_from = 0.0, settled_from = 0.0;  // m
+};
+
 struct RunResult {
-  std::string method;           // "prd" or "dem"
+  std::string method;           // "prd", "dem", or an outside solver's own name
   std::string case_name;
+  std::string version;          // the code that made it: masonry's version_text(), or the solver's
   double capacity = 0.0;        // m, the last stable d
-  int stable_steps = 0;
+  int stable_steps = 0;         // index of the last equilibrium record at or before the capacity
   bool collapsed = false;
   RunStatus status = RunStatus::running;
   std::string message;
@@ -120,9 +200,13 @@ struct RunResult {
   std::vector<JointInfo> joints;
   std::vector<StepRecord> steps;
   Timing timing;
-  nlohmann::ordered_json settings = nlohmann::ordered_json::object();
+  nlohmann::ordered_json settings = nlohmann::ordered_json::object();  // the method's settings as run, free-form
   std::optional<SlidingSummary> sliding;  // PRD with the sliding check
-  nlohmann::ordered_json extra = nlohmann::ordered_json::object();  // method-specific, top level
+  std::optional<std::vector<Event>> events;  // PRD
+  std::optional<Collapse> collapse;          // PRD, a run that collapsed
+  std::optional<double> wall_s;              // DEM: wall time of the run without I/O, s
+  std::optional<CollapseBracket> collapse_bracket;   // DEM, a located failure
+  std::vector<UnconfirmedFailure> unconfirmed_failures;  // DEM (confirm_collapse)
 };
 
 // Throws std::runtime_error naming the step and the quantity when a record holds a number that
@@ -141,8 +225,9 @@ struct PrdOnRun {
   double own = NAN;         // m: PRD from the case's own geometry
 };
 
-// Whether a record is an equilibrium: every PRD record (its collapse configuration is not
-// among them); a DEM record whose hold settled, not the failed state closing a run.
+// Whether a record is an equilibrium: one that does not say otherwise (`settled`), whichever
+// method made it: every PRD record (its collapse configuration is not among them), a DEM record
+// whose hold settled, not the failed state closing a run.
 bool is_equilibrium(const RunResult& r, const StepRecord& s);
 // The last equilibrium record at or before d (m), or nullptr where there is none.
 const StepRecord* last_equilibrium(const RunResult& r, double d);
@@ -151,6 +236,9 @@ const StepRecord* last_equilibrium(const RunResult& r, double d);
 nlohmann::ordered_json json_number(double x);
 // {"from_d", "tolerance", "kept", "taken_back", "own"}, m, as comparison and study files write it.
 nlohmann::ordered_json prd_on_run_json(const PrdOnRun& p);
+// {"open_corners": [{"joint", "corner"}], "moving_blocks": [ids]}, as results.json and
+// `masonry check --json` write a mechanism.
+nlohmann::ordered_json mechanism_json(const Mechanism& m, const Case& c);
 
 nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
 // One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.
@@ -159,8 +247,15 @@ std::string steps_csv(const RunResult& r);
 // reader (or a later failure) never sees a half-written file. Creates DIR.
 void write_results(const std::string& dir, const RunResult& r, const Case& c);
 
-// Reads a results.json (masonry-results/1) written for case `c` back into a RunResult; throws
-// std::runtime_error naming the file and field for anything that does not fit the case.
+// Reads a results.json (masonry-results/1, schemas/masonry-results.schema.json) written for case
+// `c`, by masonry or by an outside solver, into a RunResult. Only format, method, case, capacity,
+// stopped and the steps' step and d are required; what a file leaves out stays empty (numbers
+// it does not give are NaN: energy, timing.total_s), and total_weight comes from the case. Throws
+// std::runtime_error, one line naming the file and the JSON path ("steps[3].d"), for a field of
+// the wrong type, an unknown field, or results that do not fit each other or the case: a
+// capacity outside [0, the last d], d decreasing, step indices not consecutive, stable_steps
+// other than the last equilibrium's index, an unknown status, a block, support or joint the
+// case or the file does not have.
 RunResult parse_results(const std::string& text, const Case& c, const std::string& source);
 RunResult load_results(const std::string& path, const Case& c);
 

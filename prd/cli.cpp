@@ -24,9 +24,8 @@ void report_held(const RunResult& r) {
   double least = INFINITY, at = 0;
   std::string which;
   for (const StepRecord& s : r.steps)
-    if (s.extra.contains("held_corners"))
-      for (const auto& h : s.extra["held_corners"])
-        if (h["force"].get<double>() < least) least = h["force"].get<double>(), at = s.d, which = h["corner"].get<std::string>();
+    for (const HeldCorner& h : s.held_corners)
+      if (h.force < least) least = h.force, at = s.d, which = h.corner;
   if (which.empty()) return;
   std::cerr << "prd: held corners: the least force in the LP's force state is " << least << " N (" << which << ", d = " << at
             << " m)" << (least < 0 ? ": negative, the force state pulls there (a tension)" : "") << "\n";
@@ -101,6 +100,8 @@ PrdStart start_of(const Case& c, const std::string& path, double d, StartOffsets
     throw std::runtime_error(what.str());
   }
   what << path << ", " << src.method << " record " << rec->index << " (d = " << rec->d << " m)";
+  // A results file need not give poses (an outside solver's); a start needs every block's.
+  if (rec->poses.empty()) throw std::runtime_error(what.str() + ": no poses (steps[].poses), which a start needs");
   return {rec->d, rec->poses, offsets, what.str()};
 }
 
@@ -131,7 +132,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                   "the next mechanism's capacity where two are near-tied (dem/README.md, \"The branch X\")");
     settings->add(sub, "--sliding", "prd.sliding_check", K::flag,
                   "Sliding check on every step: friction demand of the joint forces and the least friction angle "
-                  "an admissible force state needs (results: extra \"sliding\")");
+                  "an admissible force state needs (results: \"sliding\" in each step and at the top)");
     sub->add_option("--friction-angle", *friction,
                     "Report the first step and joint where the friction demand exceeds this angle, deg (implies --sliding)")
         ->check(CLI::Range(0.0, 90.0));
@@ -218,7 +219,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                      j["joints"] = full["joints"];
                      j["forces"] = full["steps"][0]["forces"];
                      j["reactions"] = full["steps"][0]["reactions"];
-                     if (!k.stable) j["mechanism"] = k.state.extra["collapse"];
+                     if (!k.stable) j["mechanism"] = mechanism_json(k.collapse, c);
                      if (*as_json) {
                        std::cout << j.dump(1) << "\n";
                      } else {

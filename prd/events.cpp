@@ -146,16 +146,9 @@ Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const M
 }
 
 
-nlohmann::ordered_json event_json(const Model& m, const char* kind, double d, double within,
-                                  const std::vector<size_t>& corners) {
-  nlohmann::ordered_json ev = {{"kind", kind}, {"d", d}, {"within", within}};
-  ev["joints"] = nlohmann::ordered_json::array();
-  for (size_t e : corners) {
-    const Interface& jt = m.joints[m.ends[e].joint];
-    ev["joints"].push_back({{"joint", m.ends[e].joint},
-                            {"corner", m.ends[e].corner == 0 ? "A" : "B"},
-                            {"blocks", {m.c->blocks[jt.i].id, m.c->blocks[jt.j].id}}});
-  }
+Event make_event(const Model& m, EventKind kind, double d, double within, const std::vector<size_t>& corners) {
+  Event ev{kind, d, within, {}};
+  for (size_t e : corners) ev.corners.push_back({m.ends[e].joint, m.ends[e].corner});
   return ev;
 }
 

@@ -187,7 +187,7 @@ void start_from(Model& m, const PrdStart& start);
 void record_held(const Model& m, StepRecord& rec);
 void read_forces(const Model& m, StepRecord& rec);
 std::vector<double> slacks(const Model& m, double scale);
-nlohmann::ordered_json collapse_mechanism(Model& m, double scale);
+Mechanism collapse_mechanism(Model& m, double scale);
 void lp_check_fields(const Model& m, double scale, StepRecord& rec);
 std::vector<double> column_values(const Model& m);
 void save_basis(const Model& m, Accepted& a);
@@ -222,8 +222,7 @@ Move predict_opening(const Accepted& a, const std::vector<double>& slope, const 
 Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const Move& guess,
                const std::vector<double>& slope, const std::vector<char>& ignored, double short_move,
                const std::function<double(double)>& land);
-nlohmann::ordered_json event_json(const Model& m, const char* kind, double d, double within,
-                                  const std::vector<size_t>& corners);
+Event make_event(const Model& m, EventKind kind, double d, double within, const std::vector<size_t>& corners);
 
 // ---- sliding.cpp
 void sliding_check(const Model& m, SlidingLp& S, StepRecord& rec);

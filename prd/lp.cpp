@@ -257,22 +257,19 @@ std::vector<double> slacks(const Model& m, double scale) {
 
 // The collapse mechanism: the same LP with every increment boxed to one unit, so that it has
 // an optimum whose open corners show the mechanism. The columns are freed again afterwards.
-nlohmann::ordered_json collapse_mechanism(Model& m, double scale) {
+Mechanism collapse_mechanism(Model& m, double scale) {
   glp_prob* lp = m.lp.get();
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_DB, -1, 1);
-  nlohmann::ordered_json out;
-  out["open_corners"] = nlohmann::ordered_json::array();
-  out["moving_blocks"] = nlohmann::ordered_json::array();
+  Mechanism out;
   if (solve(m) == LpStatus::optimal) {
     const std::vector<double> s = slacks(m, scale);
     for (size_t e = 0; e < m.ends.size(); ++e)
-      if (s[e] > 1e-6 * scale)
-        out["open_corners"].push_back({{"joint", m.ends[e].joint}, {"corner", m.ends[e].corner == 0 ? "A" : "B"}});
+      if (s[e] > 1e-6 * scale) out.open_corners.push_back({m.ends[e].joint, m.ends[e].corner});
     for (size_t b = 0; b < m.col.size(); ++b) {
       if (m.col[b] < 0) continue;
       double v = 0;
       for (int k = 0; k < 3; ++k) v = std::max(v, std::abs(glp_get_col_prim(lp, m.col[b] + k)));
-      if (v > 1e-6) out["moving_blocks"].push_back(m.c->blocks[b].id);
+      if (v > 1e-6) out.moving_blocks.push_back(static_cast<int>(b));
     }
   }
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_FR, 0, 0);
@@ -289,8 +286,7 @@ void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
     if (type == GLP_FR) continue;
     dual += glp_get_row_dual(lp, r) * glp_get_row_lb(lp, r);
   }
-  rec.extra["lp_primal"] = glp_get_obj_val(lp) * scale;
-  rec.extra["lp_dual"] = dual * scale;
+  rec.lp = LpOptima{glp_get_obj_val(lp) * scale, dual * scale};
 }
 
 

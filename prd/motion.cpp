@@ -219,13 +219,11 @@ void hold_corners(Model& m, const std::vector<std::string>& names) {
 }
 
 void record_held(const Model& m, StepRecord& rec) {
-  nlohmann::ordered_json held = nlohmann::ordered_json::array();
   for (size_t e = 0; e < m.ends.size(); ++e) {
     if (!m.ends[e].held) continue;
     const Interface& jt = m.joints[m.ends[e].joint];
-    held.push_back({{"corner", corner_name(*m.c, jt.i, jt.j, m.ends[e].corner)}, {"force", corner_force(m, e)}});
+    rec.held_corners.push_back({corner_name(*m.c, jt.i, jt.j, m.ends[e].corner), corner_force(m, e)});
   }
-  if (!held.empty()) rec.extra["held_corners"] = held;
 }
 
 void set_closed(Model& m, const std::vector<char>& closed) {

@@ -44,8 +44,10 @@ struct PrdCheck {
   bool stable = false;
   double energy_rate = 0.0;  // optimum of the LP (0 when stable with fixed supports)
   // Stable: one admissible force state (joint resultants and support reactions).
-  // Unstable: `mechanism` holds the collapse mechanism's open corners and block velocities.
+  // Unstable: `collapse` holds the collapse mechanism's open corners and moving blocks,
+  // `mechanism` its block velocities.
   StepRecord state;
+  Mechanism collapse;
   std::vector<JointInfo> joints;
   std::vector<Pose> mechanism;  // per block: (u_x, u_y, theta) of the normalised mechanism
   double total_weight = 0.0;

@@ -43,7 +43,7 @@ PrdCheck prd_check(const Case& c, double contact_tolerance) {
     lp_check_fields(m, scale, out.state);
   } else if (status == LpStatus::unbounded) {
     out.stable = false;
-    out.state.extra["collapse"] = collapse_mechanism(m, scale);
+    out.collapse = collapse_mechanism(m, scale);
     out.mechanism.assign(c.blocks.size(), Pose{});
     for (size_t b = 0; b < c.blocks.size(); ++b)
       if (m.col[b] > 0)
@@ -230,11 +230,8 @@ void go_back(Walk& w) {
 void record_collapse(Walk& w, const Solved& sv, RunResult& r) {
   r.collapsed = true;
   r.status = RunStatus::collapse;
-  r.extra["events"].push_back(event_json(w.m, "collapse", w.cur.d, w.h_in, {}));
-  r.extra["collapse"] = collapse_mechanism(w.m, sv.h);
-  r.extra["collapse"]["d"] = w.cur.d;
-  r.extra["collapse"]["poses"] = nlohmann::ordered_json::array();
-  for (const Pose& p : w.rec.poses) r.extra["collapse"]["poses"].push_back({p.x, p.y, p.angle});
+  r.events->push_back(make_event(w.m, EventKind::collapse, w.cur.d, w.h_in, {}));
+  r.collapse = Collapse{collapse_mechanism(w.m, sv.h), w.cur.d, w.rec.poses};
   if (!w.prev) r.message = "unstable as it stands";
 }
 
@@ -260,7 +257,7 @@ void accept(Walk& w, const Solved& sv, RunResult& r) {
   // is over.
   if (w.seen - w.cur.d <= 1e-9 * w.h_ref) w.seen = kInf;
   if (!sv.opened.empty()) {
-    r.extra["events"].push_back(event_json(m, "open", w.cur.d, w.h_in, sv.opened));
+    r.events->push_back(make_event(m, EventKind::open, w.cur.d, w.h_in, sv.opened));
     w.seen = kInf;
   }
   Accepted& cur = w.cur;
@@ -362,7 +359,7 @@ void take(Walk& w, const Solved& sv, const Step& st, RunResult& r) {
   set_closed(m, closed);
   if (!shut_now.empty()) {
     const bool exact = std::isfinite(st.shut.at) && shut_now.size() == 1;
-    r.extra["events"].push_back(event_json(m, "close", w.cur.d + st.h, exact ? st.shut.within : st.h, shut_now));
+    r.events->push_back(make_event(m, EventKind::close, w.cur.d + st.h, exact ? st.shut.within : st.h, shut_now));
   }
   w.h_in = st.h;
   w.arrived_closing = std::isfinite(st.shut.at) ? st.shut.within : -1;
@@ -423,7 +420,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
     r.settings["event_tolerance"] = w.tol_ev;
     r.settings["max_step"] = w.h_max;
   }
-  r.extra["events"] = nlohmann::ordered_json::array();
+  r.events.emplace();
   r.joints = joint_infos(w.m);
   r.total_weight = total_weight(c);
   auto emit = [&] {

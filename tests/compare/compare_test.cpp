@@ -86,6 +86,59 @@ TEST(Compare, ToleranceGateFailsOnDoctoredHinges) {
   EXPECT_FALSE(k.a.changes.empty());
 }
 
+TEST(Compare, AnAbsoluteCapacityLimitJudgesWhereARelativeOneCannot) {
+  // 1.5 mm more capacity: 0.54% of the arch's 0.278 m.
+  RunResult more = arch_prd();
+  more.capacity += 0.0015;
+  const Comparison k = compare_runs(arch(), arch_prd(), more);
+  const auto violations = [&](const char* limits) { return check_tolerances(k, parse_tolerances(limits, "t.json")); };
+  EXPECT_EQ(violations(R"({"capacity": 0.001})").size(), 1u);
+  EXPECT_EQ(violations(R"({"capacity_abs": 0.001})").size(), 1u);
+  EXPECT_TRUE(violations(R"({"capacity_abs": 0.002})").empty());
+  // Both: the larger limit holds (as a catalogue's tolerance).
+  EXPECT_TRUE(violations(R"({"capacity": 0.001, "capacity_abs": 0.002})").empty());
+  EXPECT_TRUE(violations(R"({"capacity": 0.01, "capacity_abs": 0.001})").empty());
+  const auto v = violations(R"({"capacity": 0.001, "capacity_abs": 0.001})");
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_NE(v[0].find("difference 0.0015 m"), std::string::npos) << v[0];
+  // A reference capacity of 0 has no relative difference; an absolute limit still judges it.
+  RunResult zero = arch_prd(), small = arch_prd();
+  zero.capacity = 0;
+  small.capacity = 0.0005;
+  const Comparison z = compare_runs(arch(), zero, small);
+  EXPECT_EQ(check_tolerances(z, parse_tolerances(R"({"capacity": 0.05})", "t.json")).size(), 1u);
+  EXPECT_TRUE(check_tolerances(z, parse_tolerances(R"({"capacity_abs": 0.001})", "t.json")).empty());
+  EXPECT_THROW(parse_tolerances(R"({"capacity_abs": -1})", "t.json"), std::runtime_error);
+}
+
+TEST(Compare, WhatARunsResultsDoNotGiveIsNotComparedAndSaysSo) {
+  // An outside solver's minimal results: its capacity and steps, no reactions, no joints.
+  const RunResult& a = arch_prd();
+  RunResult lean;
+  lean.method = "my-lp";
+  lean.capacity = a.capacity;
+  lean.status = RunStatus::collapse;
+  for (const StepRecord& s : a.steps) {
+    StepRecord t;
+    t.index = s.index;
+    t.d = s.d;
+    lean.steps.push_back(t);
+  }
+  const Comparison k = compare_runs(arch(), a, lean);
+  EXPECT_EQ(k.thrust_skipped, "not compared: my-lp gives no reactions");
+  EXPECT_EQ(k.hinges_skipped, "not compared: my-lp gives no joints");
+  EXPECT_TRUE(k.supports.empty());
+  EXPECT_TRUE(k.hinges.empty());
+  EXPECT_EQ(k.capacity_rel_diff, 0.0);
+  // The limits on what is not compared are not checked; the capacity is.
+  EXPECT_TRUE(check_tolerances(k, {0.05, 0.10, true}).empty());
+  const auto j = to_json(k);
+  EXPECT_FALSE(j["thrust"]["compared"].get<bool>());
+  EXPECT_FALSE(j["hinges"]["compared"].get<bool>());
+  EXPECT_TRUE(compare_runs(arch(), a, a).thrust_skipped.empty());
+  EXPECT_TRUE(to_json(compare_runs(arch(), a, a))["thrust"]["compared"].get<bool>());
+}
+
 TEST(Compare, PointedArchIsItsOwnMirrorImage) {
   const Case& c = arch();
   const std::vector<int> m = mirror_blocks(c);
@@ -209,13 +262,15 @@ TEST(Compare, ResultsJsonReadsBackToTheSameRun) {
   EXPECT_EQ(k.capacity_rel_diff, 0.0);
   EXPECT_EQ(k.thrust_max_diff, 0.0);
   for (const HingeCheck& h : k.hinges) EXPECT_TRUE(h.match);
-  // What a solver adds beside the common fields comes back too (a convergence study read back
-  // from disk reports the DEM's collapse bracket).
+  // A method's own fields come back too (a convergence study read back from disk reports the
+  // DEM's collapse bracket).
   RunResult with = r;
-  with.extra["collapse_bracket"] = {{"width", 8e-5}, {"trials", nlohmann::ordered_json::array()}};
+  with.collapse_bracket = CollapseBracket{0.1, 0.10008, 8e-5, {{0.10008, "collapse", 12, false}}};
   const RunResult back2 = parse_results(to_json(with, arch()).dump(1), arch(), "results.json");
-  ASSERT_TRUE(back2.extra.contains("collapse_bracket"));
-  EXPECT_EQ(back2.extra["collapse_bracket"]["width"].get<double>(), 8e-5);
+  ASSERT_TRUE(back2.collapse_bracket);
+  EXPECT_EQ(back2.collapse_bracket->width, 8e-5);
+  ASSERT_EQ(back2.collapse_bracket->trials.size(), 1u);
+  EXPECT_EQ(back2.collapse_bracket->trials[0].end, "collapse");
 }
 
 TEST(Compare, ResultsOfAnotherCaseAreRefused) {
@@ -231,6 +286,7 @@ TEST(Compare, RunStatusReadsBackAndAnUnknownOneIsRefused) {
   for (RunStatus s : {RunStatus::running, RunStatus::collapse, RunStatus::max_steps, RunStatus::undecided, RunStatus::error}) {
     RunResult r = arch_prd();
     r.status = s;
+    r.collapsed = s == RunStatus::collapse;  // the reader checks that they agree
     EXPECT_EQ(parse_results(to_json(r, arch()).dump(), arch(), "results.json").status, s) << s;
   }
   EXPECT_TRUE(located(RunStatus::collapse) && located(RunStatus::max_steps));
@@ -414,8 +470,9 @@ TEST(Compare, ToleranceFileIsStrict) {
   EXPECT_THROW(parse_tolerances(R"({"capacty": 0.05})", "t.json"), std::runtime_error);
   EXPECT_THROW(parse_tolerances(R"({"capacity": "5%"})", "t.json"), std::runtime_error);
   EXPECT_THROW(parse_tolerances(R"({"hinges": 1})", "t.json"), std::runtime_error);
-  const Tolerances t = parse_tolerances(R"({"capacity": 0.05, "thrust": 0.1, "hinges": true})", "t.json");
+  const Tolerances t = parse_tolerances(R"({"capacity": 0.05, "capacity_abs": 0.002, "thrust": 0.1, "hinges": true})", "t.json");
   EXPECT_EQ(*t.capacity, 0.05);
+  EXPECT_EQ(*t.capacity_abs, 0.002);
   EXPECT_EQ(*t.thrust, 0.1);
   EXPECT_TRUE(t.hinges);
 }

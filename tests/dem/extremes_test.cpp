@@ -56,7 +56,7 @@ void expect_all_finite(const nlohmann::ordered_json& j, const std::string& where
 void expect_statics(const Case& c, const RunResult& r, double rel) {
   ASSERT_FALSE(r.steps.empty()) << r.message;
   const StepRecord& st = r.steps[0];
-  ASSERT_TRUE(st.extra.value("settled", false)) << "unbalanced " << st.extra.value("unbalanced_ratio", -1.0) << ", "
+  ASSERT_TRUE(st.settled.value_or(false)) << "unbalanced " << (st.hold ? st.hold->unbalanced_ratio : -1.0) << ", "
                                                 << r.message;
   double W = 0, Fx = 0;
   for (const Load& l : c.loads) Fx += l.force.x();

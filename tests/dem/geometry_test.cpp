@@ -133,7 +133,7 @@ TEST(DemGeometry, CompoundBlockRestsWithItsWeight) {
   const RunResult r = dem_run(c, DemSettings::from_case(c));
   ASSERT_EQ(r.steps.size(), 1u);
   const StepRecord& s = r.steps[0];
-  ASSERT_TRUE(s.extra.value("settled", false));
+  ASSERT_TRUE(s.settled.value_or(false));
   const double W = block_mass(b) * c.gravity;
   EXPECT_NEAR(s.reactions[0].force.y(), W, 1e-3 * W);
   EXPECT_NEAR(s.reactions[0].force.x(), 0, 1e-3 * W);
@@ -180,7 +180,7 @@ TEST(DemGeometry, BlocksMeetingOneEdgeStandOnTheirWholeBase) {
   const RunResult r = dem_run(c, DemSettings::from_case(c));
   ASSERT_EQ(r.steps.size(), 1u);
   const StepRecord& s = r.steps[0];
-  ASSERT_TRUE(s.extra.value("settled", false)) << r.message;
+  ASSERT_TRUE(s.settled.value_or(false)) << r.message;
   const double W = block_mass(c.blocks[1]) * c.gravity;
   EXPECT_NEAR(s.reactions[0].force.y(), 2 * W, 1e-3 * W);
   int on_slab = 0;

@@ -138,12 +138,13 @@ TEST(DemBracket, CapacityDoesNotMoveWithTheIncrement) {
     c.motion.max_steps = static_cast<int>(40 / step_deg);
     const RunResult r = test::tilt_run(c);
     ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
-    std::printf("step %g deg: capacity %.4f deg, bracket %s\n", step_deg, r.capacity / kDeg, r.extra["collapse_bracket"].dump().c_str());
-    const double width = r.extra["collapse_bracket"]["width"].get<double>();
+    std::printf("step %g deg: capacity %.4f deg, bracket %s\n", step_deg, r.capacity / kDeg, r.collapse_bracket ? std::to_string(r.collapse_bracket->width).c_str() : "none");
+    ASSERT_TRUE(r.collapse_bracket);
+    const double width = r.collapse_bracket->width;
     EXPECT_LE(width, c.dem.bracket_fraction * c.motion.step * (1 + 1e-9));
     EXPECT_NEAR(r.capacity, topple, c.dem.bracket_fraction * c.motion.step + 2 * resolution) << "step " << step_deg;
     // The record closes on the failed state just past the capacity, the equilibria before it.
-    EXPECT_FALSE(r.steps.back().extra.value("settled", true));
+    EXPECT_FALSE(r.steps.back().settled.value_or(true));
     for (size_t i = 1; i + 1 < r.steps.size(); ++i) EXPECT_GT(r.steps[i].d, r.steps[i - 1].d);
     caps[k++] = r.capacity;
   }
@@ -172,14 +173,13 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
   s.confirm_collapse = true;
   const RunResult r = dem_run(c, s);
   ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
-  ASSERT_TRUE(r.extra.contains("unconfirmed_failures"));
-  const auto& u = r.extra["unconfirmed_failures"];
+  const auto& u = r.unconfirmed_failures;
   ASSERT_FALSE(u.empty());
   // The first failure, from the settled block at 0, at a tilt far below toppling (where the
   // run would have ended before this stage).
-  EXPECT_LT(u[0]["d"].get<double>(), 0.5 * topple);
+  EXPECT_LT(u[0].d, 0.5 * topple);
   EXPECT_NEAR(r.capacity, topple, c.dem.bracket_fraction * c.motion.step + 2 * resolution);
-  EXPECT_FALSE(r.steps.back().extra.value("settled", true));
+  EXPECT_FALSE(r.steps.back().settled.value_or(true));
   // Without the stage the run ends at that first failure.
   s.confirm_collapse = false;
   const RunResult plain = dem_run(c, s);
@@ -229,8 +229,8 @@ TEST(DemLoading, AHeavyBlockAtRestElsewhereDoesNotSpeedUpTheMove) {
   const RunResult r1 = test::tilt_run(beside);
   ASSERT_EQ(r0.status, RunStatus::collapse) << r0.message;
   ASSERT_EQ(r1.status, RunStatus::collapse) << r1.message;
-  const double m0 = r0.steps.at(1).extra.at("move_cycles").get<double>();
-  const double m1 = r1.steps.at(1).extra.at("move_cycles").get<double>();
+  const double m0 = static_cast<double>(r0.steps.at(1).hold.value().move_cycles);
+  const double m1 = static_cast<double>(r1.steps.at(1).hold.value().move_cycles);
   EXPECT_NEAR(m1, m0, 0.02 * m0) << "first move: " << m0 << " cycles alone, " << m1 << " beside the heavy block";
   EXPECT_NEAR(r1.capacity, r0.capacity, alone.dem.bracket_fraction * alone.motion.step + 2 * tipping_resolution(b, h));
 }
@@ -249,7 +249,7 @@ TEST(DemLoading, TheTimeStepDoesNotChangeTheLoading) {
   ASSERT_EQ(r0.status, RunStatus::collapse) << r0.message;
   ASSERT_EQ(r1.status, RunStatus::collapse) << r1.message;
   const auto move_time = [](const RunResult& r) {
-    return r.steps.at(1).extra.at("move_cycles").get<double>() * r.settings.at("dt").get<double>();
+    return static_cast<double>(r.steps.at(1).hold.value().move_cycles) * r.settings.at("dt").get<double>();
   };
   EXPECT_NEAR(move_time(r1), move_time(r0), 0.05 * move_time(r0));
   // Both topple at atan(b/h), less the soft joints' early tipping (overlap / b, 0.07 degrees:

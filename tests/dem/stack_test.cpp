@@ -29,8 +29,9 @@ TEST(DemStack, ReactionsEqualWeightAndOverlapsMatchSprings) {
   const RunResult r = dem_run(c, s);
   ASSERT_EQ(r.steps.size(), 1u);
   const StepRecord& st = r.steps[0];
-  ASSERT_TRUE(st.extra.value("settled", false)) << "unbalanced " << st.extra.value("unbalanced_ratio", -1.0);
-  EXPECT_LT(st.extra.value("unbalanced_ratio", 1.0), s.equilibrium_tolerance);
+  ASSERT_TRUE(st.settled.value_or(false)) << "unbalanced " << (st.hold ? st.hold->unbalanced_ratio : -1.0);
+  ASSERT_TRUE(st.hold);
+  EXPECT_LT(st.hold->unbalanced_ratio, s.equilibrium_tolerance);
   EXPECT_EQ(r.status, RunStatus::max_steps);
   EXPECT_EQ(r.capacity, 0.0);
 
@@ -105,7 +106,7 @@ TEST(DemStack, BothMethodsReportTheSameWeightWithUpwardAndSidewaysLoads) {
   EXPECT_NEAR(d.total_weight, W, 1e-9 * W);
   EXPECT_NEAR(p.total_weight, W, 1e-9 * W);
   ASSERT_FALSE(d.steps.empty());
-  ASSERT_TRUE(d.steps[0].extra.value("settled", false));
+  ASSERT_TRUE(d.steps[0].settled.value_or(false));
   ASSERT_EQ(d.steps[0].reactions.size(), 1u);
   EXPECT_NEAR(d.steps[0].reactions[0].force.y(), W, 1e-3 * W);
   EXPECT_NEAR(d.steps[0].reactions[0].force.x(), -50.0, 1e-3 * W);

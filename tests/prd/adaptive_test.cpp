@@ -46,10 +46,10 @@ TEST(PrdAdaptive, TipsWithinTheEventToleranceOfTheClosedForm) {
   EXPECT_GT(r.capacity, critical - 1e-5);
   // A fixed run at the tolerance would take 46000 LPs; bisection of a 0.16 rad step needs ~15.
   EXPECT_LT(r.timing.lp_solves, 60);
-  const auto& ev = r.extra["events"];
+  const std::vector<Event>& ev = r.events.value();
   ASSERT_FALSE(ev.empty());
-  EXPECT_EQ(ev.back()["kind"], "collapse");
-  EXPECT_LE(ev.back()["within"].get<double>(), 1e-5 * (1 + 1e-6));
+  EXPECT_EQ(ev.back().kind, EventKind::collapse);
+  EXPECT_LE(ev.back().within, 1e-5 * (1 + 1e-6));
 }
 
 // The acceptance test: the capacity agrees with a fixed-step run at a quarter of the
@@ -62,11 +62,10 @@ void expect_agrees_with_quarter_step(const std::string& name) {
   ASSERT_EQ(q.status, RunStatus::collapse) << q.message;
   const double tol = event_tolerance(a);
   EXPECT_NEAR(a.capacity, q.capacity, tol) << name;
-  for (const auto& e : a.extra["events"]) {
-    EXPECT_LE(e["within"].get<double>(), tol * (1 + 1e-6)) << name << ": " << e.dump();
-    EXPECT_TRUE(e["kind"] == "open" || e["kind"] == "close" || e["kind"] == "collapse") << e.dump();
-    if (e["kind"] != "collapse") {
-      EXPECT_FALSE(e["joints"].empty()) << e.dump();
+  for (const Event& e : a.events.value()) {
+    EXPECT_LE(e.within, tol * (1 + 1e-6)) << name << ": " << event_kind_name(e.kind) << " at " << e.d;
+    if (e.kind != EventKind::collapse) {
+      EXPECT_FALSE(e.corners.empty()) << event_kind_name(e.kind) << " at " << e.d;
     }
   }
   // Every adaptive record is a configuration in equilibrium the LP accepted: d increases.
@@ -123,10 +122,10 @@ TEST(PrdAdaptive, PointedArchEventsMatchTheFixedRunsMechanismChanges) {
   const RunResult a = prd_run(c, adaptive(c));
   const RunResult q = prd_run(c, quarter_step(c));
   std::vector<double> opens_a, opens_q;
-  for (const auto& e : a.extra["events"])
-    if (e["kind"] == "open") opens_a.push_back(e["d"].get<double>());
-  for (const auto& e : q.extra["events"])
-    if (e["kind"] == "open") opens_q.push_back(e["d"].get<double>());
+  for (const Event& e : a.events.value())
+    if (e.kind == EventKind::open) opens_a.push_back(e.d);
+  for (const Event& e : q.events.value())
+    if (e.kind == EventKind::open) opens_q.push_back(e.d);
   ASSERT_EQ(opens_a.size(), opens_q.size());
   const double h = quarter_step(c).step, tol = event_tolerance(a);
   for (size_t k = 0; k < opens_a.size(); ++k) EXPECT_NEAR(opens_a[k], opens_q[k], h + tol) << k;
@@ -137,7 +136,7 @@ TEST(PrdAdaptive, FixedRunsAreUnchangedByTheEventMachinery) {
   const Case c = standard("pointed-arch");
   const RunResult f = prd_run(c, PrdSettings::from_case(c));
   for (size_t k = 0; k < f.steps.size(); ++k) EXPECT_DOUBLE_EQ(f.steps[k].d, k * c.motion.step);
-  for (const auto& e : f.extra["events"]) EXPECT_LE(e["within"].get<double>(), c.motion.step * (1 + 1e-12));
+  for (const Event& e : f.events.value()) EXPECT_LE(e.within, c.motion.step * (1 + 1e-12));
 }
 
 }  // namespace

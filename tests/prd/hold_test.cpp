@@ -23,8 +23,8 @@ const std::string kBlock = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-blo
 const std::string kArch = std::string(MASONRY_SOURCE_DIR) + "/cases/pointed-arch.json";
 
 double held_force(const StepRecord& s, const std::string& corner) {
-  for (const auto& h : s.extra.at("held_corners"))
-    if (h["corner"] == corner) return h["force"].get<double>();
+  for (const HeldCorner& h : s.held_corners)
+    if (h.corner == corner) return h.force;
   return NAN;
 }
 
@@ -57,7 +57,7 @@ TEST(PrdHold, HoldingACornerTheFreeRunNeverOpensChangesNothing) {
   std::set<std::pair<int, int>> opened;
   for (const StepRecord& s : free.steps)
     for (const OpenCorner& o : s.open_corners) opened.insert({o.joint, o.corner});
-  for (const auto& o : free.extra.at("collapse").at("open_corners")) opened.insert({o["joint"].get<int>(), o["corner"] == "B" ? 1 : 0});
+  for (const CornerRef& o : free.collapse.value().mechanism.open_corners) opened.insert({o.joint, o.corner});
   // The first corner of the arch that opens neither on the way nor in the collapse mechanism.
   std::string never;
   for (size_t j = 0; j < free.joints.size() && never.empty(); ++j)

@@ -103,7 +103,7 @@ TEST(PrdMilankovitch, UnstableArchReportsACollapseMechanism) {
   const PrdCheck k = prd_check(semicircle(0.09), 1e-5);
   ASSERT_FALSE(k.stable);
   // A four-hinge mechanism at least (a three-hinge arch is statically determinate).
-  EXPECT_GE(k.state.extra["collapse"]["open_corners"].size(), 4u);
+  EXPECT_GE(k.collapse.open_corners.size(), 4u);
 }
 
 // Forces: equilibrium of every free block, compression only, reactions = weight, duality.
@@ -118,7 +118,8 @@ void check_forces(const Case& c, const RunResult& r, const StepRecord& s, bool f
     EXPECT_NEAR(sum.y(), r.total_weight, 1e-8 * r.total_weight);
     EXPECT_NEAR(sum.x(), 0.0, 1e-8 * r.total_weight);
   }
-  const double primal = s.extra["lp_primal"].get<double>(), dual = s.extra["lp_dual"].get<double>();
+  ASSERT_TRUE(s.lp);
+  const double primal = s.lp->primal, dual = s.lp->dual;
   EXPECT_NEAR(primal, dual, 1e-7 * (std::abs(primal) + r.total_weight * 1e-3));
 }
 

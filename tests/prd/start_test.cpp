@@ -66,7 +66,7 @@ TEST(PrdStart, FromTheDemsSoftTiltedBlockPrdTopplesWhereTheDemDidOrAtTheRigidTil
   const RunResult dem = dem_run(c, DemSettings::from_case(c));
   ASSERT_EQ(dem.status, RunStatus::collapse) << dem.message;
   const double rigid = std::atan(0.2 / 0.4);
-  const double width = dem.extra.at("collapse_bracket").at("width").get<double>();
+  const double width = dem.collapse_bracket.value().width;
   ASSERT_GT(rigid - dem.capacity, 20 * width) << "the soft block topples visibly early";
   // The DEM's last record is the failed state closing the run, not an equilibrium.
   ASSERT_FALSE(is_equilibrium(dem, dem.steps.back()));
