@@ -15,6 +15,7 @@ packages=(
   libbenchmark-dev                 # benchmarks
   chromium                         # compare tests: report.html in a headless browser
   jq                               # the PRD report scripts under reports/
+  python3-jsonschema               # the schema test: every file masonry writes against schemas/ (JSON Schema 2020-12)
 )
 missing=()
 for p in "${packages[@]}"; do
