@@ -1,9 +1,15 @@
-// `masonry validate`: the catalogue of benchmarks on both methods, one table, an exit code for CI.
+// `masonry validate`: the catalogue of benchmarks on both methods, or on an outside solver, one
+// table, an exit code for CI.
 //   masonry validate [--quick] [--only NAME...] [--json FILE] [--markdown FILE] [--catalogue FILE]
-// Exit code 0 when every row passes, 1 when one fails, 2 for bad input (main()).
+//                    [--solver 'COMMAND' [--solver-name NAME] [--solver-as prd|dem] [--solver-timeout S]]
+// Exit code 0 when every row passes, 1 when one fails or errors, 2 for bad input (main()).
+#include <cctype>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "app/command.hpp"
@@ -18,7 +24,21 @@ struct Opts {
   bool quick = false, quiet = false, list = false;
   std::vector<std::string> only;
   std::string json, markdown, catalogue;
+  std::string solver, solver_name = "solver", solver_as = "prd";
+  double solver_timeout = 600;
 };
+
+// The outside solver's working directory: a fresh one under the system's temporary directory.
+// The paths replace {case} and {out} in a shell command as they are, so they must need no quoting.
+std::string solver_workdir() {
+  namespace fs = std::filesystem;
+  std::string pattern = (fs::temp_directory_path() / "masonry-solver-XXXXXX").string();
+  for (char ch : pattern)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && std::string("/._-+").find(ch) == std::string::npos)
+      throw CaseError("--solver: the temporary directory " + pattern + " has characters a shell command would need quoted (set TMPDIR)");
+  if (!mkdtemp(pattern.data())) throw CaseError("--solver: cannot make a working directory under " + fs::temp_directory_path().string());
+  return pattern;
+}
 
 // The benchmarks chosen by --quick and --only, in catalogue order; an unknown name is bad input.
 std::vector<const Benchmark*> chosen(const Catalogue& cat, const Opts& o) {
@@ -40,6 +60,7 @@ std::string command_line(const Opts& o) {
   if (o.quick) s += " --quick";
   for (const std::string& n : o.only) s += " --only " + n;
   if (!o.catalogue.empty()) s += " --catalogue " + o.catalogue;
+  if (!o.solver.empty()) s += " --solver '" + o.solver + "' --solver-name " + o.solver_name + " --solver-as " + o.solver_as;
   return s;
 }
 
@@ -56,6 +77,16 @@ void add_validate_commands(CLI::App& app, Commands& out) {
   sub->add_option("--catalogue", o->catalogue, "A catalogue file (masonry-catalogue/1) instead of the built-in one");
   sub->add_flag("--list", o->list, "List the catalogue's benchmarks and exit");
   sub->add_flag("--quiet", o->quiet, "No progress lines");
+  sub->add_option("--solver", o->solver,
+                  "Judge an outside solver instead: a shell command with {case} (a masonry-case/1 file it reads) and {out} (an empty "
+                  "directory where it writes results.json, masonry-results/1); README, \"Gate your own solver in CI\"");
+  sub->add_option("--solver-name", o->solver_name, "The outside solver's name in the table (default: solver)")->needs("--solver");
+  sub->add_option("--solver-as", o->solver_as, "Judge it by this method's expected values and tolerances (default prd: a limit-analysis code)")
+      ->check(CLI::IsMember({"prd", "dem"}))
+      ->needs("--solver");
+  sub->add_option("--solver-timeout", o->solver_timeout, "Seconds one run of the solver may take (default 600); past it the run is an error")
+      ->check(CLI::PositiveNumber)
+      ->needs("--solver");
   out.push_back({sub, [o]() {
                    const Catalogue cat = o->catalogue.empty() ? builtin_catalogue() : load_catalogue(o->catalogue);
                    if (o->list) {
@@ -64,14 +95,24 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                      return 0;
                    }
                    const std::vector<const Benchmark*> todo = chosen(cat, *o);
+                   std::optional<OutsideSolver> solver;
+                   if (!o->solver.empty()) {
+                     solver.emplace();
+                     solver->command = o->solver;
+                     solver->name = o->solver_name;
+                     solver->as = *parse_method(o->solver_as);
+                     solver->timeout_s = o->solver_timeout;
+                     solver->workdir = solver_workdir();
+                   }
                    std::vector<ValidationRow> rows;
                    RunCache cache;
                    for (size_t k = 0; k < todo.size(); ++k) {
                      const auto part = run_benchmark(cat, *todo[k], cache, [&](const ValidationRow& r) {
                        if (o->quiet) return;
+                       const char* verdict = !r.applicable ? "n/a" : r.pass ? "pass" : r.solver_error ? "ERROR" : "FAIL";
                        std::fprintf(stderr, "validate [%zu/%zu] %s (%s): %s, %.2f s\n", k + 1, todo.size(), r.benchmark->name.c_str(),
-                                    method_name(r.method), r.pass ? "pass" : "FAIL", r.seconds);
-                     });
+                                    r.method_label.c_str(), verdict, r.seconds);
+                     }, solver ? &*solver : nullptr);
                      rows.insert(rows.end(), part.begin(), part.end());
                      // Finished rows are kept even when a later benchmark fails or the run is stopped.
                      if (!o->json.empty()) write_file_atomic(o->json, validation_json(cat, rows).dump(1) + "\n");
@@ -79,10 +120,15 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                    std::cout << validation_table(rows);
                    const std::string failures = validation_failures(rows);
                    if (!failures.empty()) std::cout << "\n" << failures;
+                   const std::string skipped = validation_not_applicable(rows);
+                   if (!skipped.empty()) std::cout << "\n" << skipped;
                    if (!o->markdown.empty()) write_file_atomic(o->markdown, validation_markdown(cat, rows, command_line(*o)));
-                   for (const ValidationRow& r : rows)
-                     if (!r.pass) return kExitFailed;
-                   return 0;
+                   bool any_failed = false;
+                   for (const ValidationRow& r : rows) any_failed = any_failed || failed(r);
+                   // The solver's files are kept where they explain a failure, removed otherwise.
+                   if (solver && any_failed) std::cout << "\nThe solver's runs (case.json, out/, solver.log): " << solver->workdir << "\n";
+                   if (solver && !any_failed) std::filesystem::remove_all(solver->workdir);
+                   return any_failed ? kExitFailed : kExitDone;
                  }});
 }
 

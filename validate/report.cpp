@@ -5,6 +5,7 @@
 #include "report/escape.hpp"
 #include "report/format.hpp"
 #include "report/table.hpp"
+#include "model/version.hpp"
 #include "validate/validate.hpp"
 
 namespace masonry {
@@ -30,9 +31,21 @@ std::string cell_error(const ValidationRow& r) {
 }
 
 std::string cell_tolerance(const ValidationRow& r) {
+  if (!r.applicable) return "-";
   if (r.benchmark->quantity == Quantity::stands) return "exact";
   return fmt::g(r.tolerance, 3);
 }
+
+std::string cell_expected_or_none(const ValidationRow& r) { return r.applicable ? cell_expected(r) : "-"; }
+
+// pass, FAIL (a wrong answer, or none), ERROR (an outside solver failed), n/a.
+std::string verdict(const ValidationRow& r) {
+  if (!r.applicable) return "n/a";
+  if (r.pass) return "pass";
+  return r.solver_error ? "ERROR" : "FAIL";
+}
+
+std::string method_cell(const ValidationRow& r) { return r.method_label.empty() ? method_name(r.method) : r.method_label; }
 
 std::string quantity_cell(const ValidationRow& r) {
   std::string q = quantity_name(r.benchmark->quantity);
@@ -43,8 +56,8 @@ std::string quantity_cell(const ValidationRow& r) {
 std::vector<std::vector<std::string>> cells(const std::vector<ValidationRow>& rows) {
   std::vector<std::vector<std::string>> out;
   for (const ValidationRow& r : rows)
-    out.push_back({r.benchmark->name, method_name(r.method), quantity_cell(r), cell_expected(r), cell_obtained(r), cell_error(r),
-                   cell_tolerance(r), r.pass ? "pass" : "FAIL", fmt::number(r.seconds, "%.2f s", r.seconds), r.expected_from});
+    out.push_back({r.benchmark->name, method_cell(r), quantity_cell(r), cell_expected_or_none(r), cell_obtained(r), cell_error(r),
+                   cell_tolerance(r), verdict(r), fmt::number(r.seconds, "%.2f s", r.seconds), r.expected_from});
   return out;
 }
 
@@ -53,6 +66,18 @@ const std::vector<std::string> kHeader = {"benchmark", "method", "quantity", "ex
 
 int passed(const std::vector<ValidationRow>& rows) {
   return static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const ValidationRow& r) { return r.pass; }));
+}
+
+int not_applicable(const std::vector<ValidationRow>& rows) {
+  return static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const ValidationRow& r) { return !r.applicable; }));
+}
+
+// "5 of 7 passed", with the rows that do not apply said apart: "5 of 6 passed, 1 not applicable".
+std::string tally(const std::vector<ValidationRow>& rows) {
+  const int na = not_applicable(rows);
+  std::string s = std::to_string(passed(rows)) + " of " + std::to_string(rows.size() - na) + " passed";
+  if (na > 0) s += ", " + std::to_string(na) + " not applicable";
+  return s;
 }
 
 }  // namespace
@@ -74,16 +99,16 @@ std::string validation_table(const std::vector<ValidationRow>& rows) {
   };
   line(kHeader);
   for (const auto& row : body) line(row);
-  out << passed(rows) << " of " << rows.size() << " passed\n";
+  out << tally(rows) << "\n";
   return out.str();
 }
 
 std::string validation_failures(const std::vector<ValidationRow>& rows) {
   std::ostringstream out;
   for (const ValidationRow& r : rows) {
-    if (r.pass) continue;
+    if (!failed(r)) continue;
     const Benchmark& b = *r.benchmark;
-    out << "FAIL " << b.name << " (" << method_name(r.method) << "): expected " << quantity_name(b.quantity) << " "
+    out << verdict(r) << " " << b.name << " (" << method_cell(r) << "): expected " << quantity_name(b.quantity) << " "
         << cell_expected(r);
     if (b.quantity != Quantity::stands) out << " +- " << fmt::g(r.tolerance, 3);
     if (!r.unit.empty()) out << " " << r.unit;
@@ -96,15 +121,24 @@ std::string validation_failures(const std::vector<ValidationRow>& rows) {
   return out.str();
 }
 
+std::string validation_not_applicable(const std::vector<ValidationRow>& rows) {
+  std::ostringstream out;
+  for (const ValidationRow& r : rows)
+    if (!r.applicable) out << "n/a " << r.benchmark->name << " (" << method_cell(r) << "): " << r.note << "\n";
+  return out.str();
+}
+
 nlohmann::ordered_json validation_json(const Catalogue& cat, const std::vector<ValidationRow>& rows) {
   nlohmann::ordered_json j;
   j["format"] = "masonry-validation/1";
+  j["version"] = version_text();
   j["catalogue"] = cat.source;
   j["passed"] = passed(rows);
+  j["not_applicable"] = not_applicable(rows);
   j["rows"] = nlohmann::ordered_json::array();
   for (const ValidationRow& r : rows) {
     const Benchmark& b = *r.benchmark;
-    nlohmann::ordered_json x = {{"benchmark", b.name}, {"title", b.title}, {"method", method_name(r.method)},
+    nlohmann::ordered_json x = {{"benchmark", b.name}, {"title", b.title}, {"method", method_cell(r)}, {"judged_as", method_name(r.method)},
                                 {"quantity", quantity_name(b.quantity)}, {"unit", r.unit}, {"expected", r.expected},
                                 {"expected_from", r.expected_from}};
     // No NaN reaches a report: a row without a number says so.
@@ -112,6 +146,8 @@ nlohmann::ordered_json validation_json(const Catalogue& cat, const std::vector<V
     x["error"] = r.measured ? nlohmann::ordered_json(r.error()) : nlohmann::ordered_json(nullptr);
     x["tolerance"] = r.tolerance;
     x["pass"] = r.pass;
+    x["applicable"] = r.applicable;
+    x["solver_error"] = r.solver_error;
     x["seconds"] = r.seconds;
     x["note"] = r.note;
     for (const MethodRun& m : b.methods)
@@ -124,8 +160,8 @@ nlohmann::ordered_json validation_json(const Catalogue& cat, const std::vector<V
 std::string validation_markdown(const Catalogue& cat, const std::vector<ValidationRow>& rows, const std::string& command) {
   std::ostringstream out;
   out << "# Validation: both methods against what is known\n\n";
-  out << "Generated by `" << command << "` from " << md_escape(cat.source) << ". " << passed(rows) << " of " << rows.size()
-      << " rows pass. Times are wall times of one run on a shared machine (indicative only).\n\n";
+  out << "Generated by `" << command << "` (" << md_escape(version_text()) << ") from " << md_escape(cat.source) << ". " << tally(rows)
+      << ". Times are wall times of one run on a shared machine (indicative only).\n\n";
   Table t;
   t.head.assign(kHeader.begin(), kHeader.end());
   for (const auto& row : cells(rows)) t.rows.emplace_back(row.begin(), row.end());
@@ -142,11 +178,11 @@ std::string validation_markdown(const Catalogue& cat, const std::vector<Validati
       out << "\n\n";
       last = &b;
     }
-    out << "- " << method_name(r.method) << ": " << (r.pass ? "pass" : "**fail**") << ", obtained " << md_escape(cell_obtained(r))
+    out << "- " << md_escape(method_cell(r)) << ": " << (r.pass || !r.applicable ? verdict(r) : "**" + verdict(r) + "**") << ", obtained " << md_escape(cell_obtained(r))
         << (r.unit.empty() ? "" : " " + r.unit);
     if (!r.note.empty()) out << " (" << md_escape(r.note) << ")";
     for (const MethodRun& m : b.methods)
-      if (m.method == r.method && b.quantity != Quantity::stands)
+      if (m.method == r.method && b.quantity != Quantity::stands && r.applicable)
         out << ". Tolerance " << fmt::g(r.tolerance, 3) << (r.unit.empty() ? "" : " " + r.unit) << ": " << md_escape(m.tolerance.why);
     out << "\n";
   }

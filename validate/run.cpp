@@ -1,6 +1,8 @@
 // Running one benchmark: the quantity measured on each method, then judged.
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <sstream>
 
 #include "prd/prd.hpp"
@@ -11,14 +13,19 @@ namespace masonry {
 
 namespace {
 
-// One measurement: a number, or why there is none.
+// One measurement: a number, or why there is none (a failure; an outside solver's error; a
+// quantity that does not apply).
 struct Measured {
   bool ok = false;
   double value = 0.0;
   std::string note;
+  bool error = false;
+  bool applicable = true;
 };
 
 Measured fail(const std::string& why) { return {false, 0.0, why}; }
+Measured solver_error(const std::string& why) { return {false, 0.0, why, true}; }
+Measured not_applicable(const std::string& why) { return {false, 0.0, why, false, false}; }
 
 const RunResult& run_method(const Case& c, Method m, RunCache& cache) {
   const std::string key = std::string(method_name(m)) + "\n" + case_to_json(c);
@@ -43,13 +50,18 @@ Measured stands(Case c, Method m) {
   return fail(run_failure(r));
 }
 
-// Bisection on the searched parameter for where the structure starts (or stops) standing.
-Measured threshold(const Catalogue& cat, const Benchmark& b, Method m) {
+// Bisection on the searched parameter for where the structure starts (or stops) standing;
+// `at` says whether it stands at a value.
+Measured bisect(const Benchmark& b, const std::function<Measured(double)>& at) {
   const Search& s = *b.search;
-  auto at = [&](double v) { return stands(benchmark_case(cat, b, m, v), m); };
-  Measured lo = at(s.lo), hi = at(s.hi);
-  if (!lo.ok) return fail("at " + b.search->parameter + " = " + std::to_string(s.lo) + ": " + lo.note);
-  if (!hi.ok) return fail("at " + b.search->parameter + " = " + std::to_string(s.hi) + ": " + hi.note);
+  const auto failed_at = [&](double v, Measured k) {
+    k.note = "at " + s.parameter + " = " + std::to_string(v) + ": " + k.note;
+    return k;
+  };
+  Measured lo = at(s.lo);
+  if (!lo.ok) return failed_at(s.lo, lo);
+  Measured hi = at(s.hi);
+  if (!hi.ok) return failed_at(s.hi, hi);
   if (lo.value == hi.value)
     return fail(std::string("the structure ") + (lo.value > 0 ? "stands" : "falls") + " at both ends of the search range");
   double a = s.lo, z = s.hi;
@@ -57,7 +69,7 @@ Measured threshold(const Catalogue& cat, const Benchmark& b, Method m) {
   while (z - a > s.resolution) {
     const double mid = 0.5 * (a + z);
     const Measured k = at(mid);
-    if (!k.ok) return fail("at " + b.search->parameter + " = " + std::to_string(mid) + ": " + k.note);
+    if (!k.ok) return failed_at(mid, k);
     (k.value == stands_at_lo ? a : z) = mid;
   }
   std::ostringstream note;
@@ -65,7 +77,7 @@ Measured threshold(const Catalogue& cat, const Benchmark& b, Method m) {
   return {true, 0.5 * (a + z), note.str()};
 }
 
-// The record of a run at d (for the DEM, an equilibrium).
+// The record of a run at d (an equilibrium: for the DEM, a hold that settled).
 const StepRecord* record_at(const RunResult& r, double d) {
   const double eps = 1e-9 * std::max(1.0, std::abs(d));
   for (const StepRecord& s : r.steps)
@@ -73,13 +85,14 @@ const StepRecord* record_at(const RunResult& r, double d) {
   return nullptr;
 }
 
-Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& cache) {
-  if (b.quantity == Quantity::threshold) return threshold(cat, b, m);
-  Case c = benchmark_case(cat, b, m);
-  if (b.quantity == Quantity::stands) return stands(c, m);
-  if (b.quantity == Quantity::least_friction_angle) c.prd.sliding_check = true;
-  const RunResult& r = run_method(c, m, cache);
-  if (r.status == RunStatus::error || r.status == RunStatus::undecided) return fail(run_failure(r));
+bool any_reactions(const RunResult& r) {
+  for (const StepRecord& s : r.steps)
+    if (!s.reactions.empty()) return true;
+  return false;
+}
+
+// The quantities one capacity run gives: from masonry's own runs, and from an outside solver's.
+Measured from_run(const Benchmark& b, const Case& c, const RunResult& r) {
   switch (b.quantity) {
     case Quantity::capacity:
       if (r.status != RunStatus::collapse)
@@ -90,14 +103,16 @@ Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& c
       return {true, r.sliding->required_friction_angle, "at joint " + r.sliding->joint};
     }
     case Quantity::reaction: {
+      if (!any_reactions(r)) return not_applicable("the results give no reactions");
       const StepRecord* s = record_at(r, b.at_d);
       if (!s) return fail("no recorded equilibrium at d = " + std::to_string(b.at_d) + " m");
       for (const Reaction& x : s->reactions)
         if (x.support == b.support)
           return {true, b.component == "x" ? x.force.x() : b.component == "y" ? x.force.y() : x.moment, ""};
-      return fail("no support named '" + b.support + "'");
+      return fail("no reaction of support '" + b.support + "' at d = " + std::to_string(s->d) + " m");
     }
     case Quantity::reaction_balance: {
+      if (!any_reactions(r)) return not_applicable("the results give no reactions");
       // Quasi-static equilibrium: the supports together carry the dead loads, at every record.
       const Vec2 P = dead_load_resultant(c);
       double worst = 0;
@@ -117,9 +132,8 @@ Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& c
       const double W = dead_load_resultant(c).norm();
       double worst = 0;
       for (const StepRecord& s : r.steps) {
-        if (!s.extra.contains("lp_primal") || !s.extra.contains("lp_dual")) continue;
-        const double p = s.extra["lp_primal"].get<double>(), d = s.extra["lp_dual"].get<double>();
-        worst = std::max(worst, std::abs(p - d) / (std::abs(p) + W));
+        if (!s.lp) continue;
+        worst = std::max(worst, std::abs(s.lp->primal - s.lp->dual) / (std::abs(s.lp->primal) + W));
       }
       return {true, worst, "over " + std::to_string(r.steps.size()) + " steps"};
     }
@@ -128,22 +142,105 @@ Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& c
   return fail("unhandled quantity");
 }
 
+Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& cache) {
+  if (b.quantity == Quantity::threshold)
+    return bisect(b, [&](double v) { return stands(benchmark_case(cat, b, m, v), m); });
+  Case c = benchmark_case(cat, b, m);
+  if (b.quantity == Quantity::stands) return stands(c, m);
+  if (b.quantity == Quantity::least_friction_angle) c.prd.sliding_check = true;
+  const RunResult& r = run_method(c, m, cache);
+  if (r.status == RunStatus::error || r.status == RunStatus::undecided) return fail(run_failure(r));
+  return from_run(b, c, r);
+}
+
+// ---- An outside solver: its runs, one per case, cached as masonry's own are.
+
+const RunResult* outside_run(const OutsideSolver& s, const Case& c, const Benchmark& b, RunCache& cache, std::string& why) {
+  const std::string key = "outside\n" + case_to_json(c);
+  if (auto it = cache.runs.find(key); it != cache.runs.end()) return &it->second;
+  if (auto it = cache.outside_errors.find(key); it != cache.outside_errors.end()) {
+    why = it->second;
+    return nullptr;
+  }
+  try {
+    RunResult r = run_outside(s, c, b.name + "-" + std::to_string(++cache.outside_runs));
+    return &cache.runs.emplace(key, std::move(r)).first->second;
+  } catch (const std::exception& e) {
+    why = cache.outside_errors[key] = e.what();
+    return nullptr;
+  }
+}
+
+// A run that stopped by error is the solver's error; undecided is no answer (a failed row).
+std::optional<Measured> outside_failure(const RunResult& r) {
+  if (r.status == RunStatus::error) return solver_error(run_failure(r));
+  if (r.status == RunStatus::undecided || r.status == RunStatus::running) return fail(run_failure(r));
+  return std::nullopt;
+}
+
+// The structure as it stands: the solver run with motion.max_steps = 0 (README, "Gate your own
+// solver in CI"): stopped max_steps, it stands; collapse, it falls.
+Measured outside_stands(const OutsideSolver& s, Case c, const Benchmark& b, RunCache& cache) {
+  c.motion.max_steps = 0;
+  std::string why;
+  const RunResult* r = outside_run(s, c, b, cache, why);
+  if (!r) return solver_error(why);
+  if (const auto f = outside_failure(*r)) return *f;
+  return {true, r->status == RunStatus::max_steps ? 1.0 : 0.0, ""};
+}
+
+Measured measure_outside(const Catalogue& cat, const Benchmark& b, const OutsideSolver& s, RunCache& cache) {
+  switch (b.quantity) {
+    case Quantity::least_friction_angle:
+      return not_applicable("PRD's sliding check (the least friction angle of its force states) is not in a results file");
+    case Quantity::duality_gap: return not_applicable("an LP duality gap is not in a results file");
+    case Quantity::threshold:
+      return bisect(b, [&](double v) { return outside_stands(s, benchmark_case(cat, b, s.as, v), b, cache); });
+    case Quantity::stands: return outside_stands(s, benchmark_case(cat, b, s.as), b, cache);
+    default: break;
+  }
+  const Case c = benchmark_case(cat, b, s.as);
+  std::string why;
+  const RunResult* r = outside_run(s, c, b, cache, why);
+  if (!r) return solver_error(why);
+  if (const auto f = outside_failure(*r)) return *f;
+  return from_run(b, c, *r);
+}
+
+std::string methods_of(const Benchmark& b) {
+  std::string out;
+  for (const MethodRun& m : b.methods) out += (out.empty() ? "" : " and ") + std::string(method_name(m.method));
+  return out;
+}
+
 }  // namespace
 
 std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& b, RunCache& cache,
-                                         const std::function<void(const ValidationRow&)>& on_row) {
+                                         const std::function<void(const ValidationRow&)>& on_row, const OutsideSolver* solver) {
   using clock = std::chrono::steady_clock;
   std::vector<ValidationRow> rows;
+  const auto finish = [&](ValidationRow row, clock::time_point t0) {
+    row.seconds = std::chrono::duration<double>(clock::now() - t0).count();
+    if (on_row) on_row(row);
+    rows.push_back(std::move(row));
+  };
+  const auto unit_of = [&]() -> std::string {
+    // std::string(...), not a literal: GCC 12 warns falsely on these assignments (PR105651).
+    if (b.quantity == Quantity::threshold && b.search->parameter.find("friction_angle") != std::string::npos) return std::string("deg");
+    if (b.quantity == Quantity::threshold && b.search->parameter == "thickness") return std::string("m");
+    if (b.quantity == Quantity::reaction && b.component == "moment") return std::string("N m");
+    return quantity_unit(b.quantity);
+  };
+  bool judged = false;
   for (const MethodRun& mr : b.methods) {
+    if (solver && mr.method != solver->as) continue;
+    judged = true;
     const auto t0 = clock::now();
     ValidationRow row;
     row.benchmark = &b;
     row.method = mr.method;
-    row.unit = quantity_unit(b.quantity);
-    // std::string(...), not a literal: GCC 12 warns falsely on these assignments (PR105651).
-    if (b.quantity == Quantity::threshold && b.search->parameter.find("friction_angle") != std::string::npos) row.unit = std::string("deg");
-    if (b.quantity == Quantity::threshold && b.search->parameter == "thickness") row.unit = std::string("m");
-    if (b.quantity == Quantity::reaction && b.component == "moment") row.unit = std::string("N m");
+    row.method_label = solver ? solver->name : method_name(mr.method);
+    row.unit = unit_of();
     const Expected& x = mr.expected ? *mr.expected : b.expected;
     row.expected_from = mr.expected ? mr.source : b.source;
     bool have_expected = true;
@@ -164,17 +261,28 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
       }
     }
     if (have_expected) {
-      const Measured got = measure(cat, b, mr.method, cache);
+      const Measured got = solver ? measure_outside(cat, b, *solver, cache) : measure(cat, b, mr.method, cache);
       row.measured = got.ok;
       row.obtained = got.value;
       row.note = got.note;
+      row.solver_error = got.error;
+      row.applicable = got.applicable;
       row.tolerance = mr.tolerance.limit(row.expected);
       row.pass = got.ok && (b.quantity == Quantity::stands ? got.value == row.expected
                                                            : std::abs(row.error()) <= row.tolerance);
     }
-    row.seconds = std::chrono::duration<double>(clock::now() - t0).count();
-    if (on_row) on_row(row);
-    rows.push_back(std::move(row));
+    finish(std::move(row), t0);
+  }
+  if (solver && !judged) {
+    ValidationRow row;
+    row.benchmark = &b;
+    row.method = solver->as;
+    row.method_label = solver->name;
+    row.unit = unit_of();
+    row.applicable = false;
+    row.expected_from = b.source;
+    row.note = "the catalogue judges only " + methods_of(b) + " here (no " + method_name(solver->as) + " tolerance)";
+    finish(std::move(row), clock::now());
   }
   return rows;
 }

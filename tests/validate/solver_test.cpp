@@ -1,0 +1,139 @@
+// `masonry validate --solver`: an outside solver judged by the catalogue. The example solver
+// (examples/toppling_solver.py, closed-form statics written from the published formats) passes;
+// a copy 10% off fails with exit 1; a solver that crashes, hangs, writes nothing or writes a
+// malformed file gives an error row naming the reason (the field) and exit 1; quantities a
+// results file cannot give are not applicable; a threshold runs the solver at every bisection point.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "common.hpp"
+#include "validate/validate.hpp"
+
+namespace masonry {
+namespace {
+
+using test::Scratch;
+
+const std::string kExe = MASONRY_EXE;
+const std::string kPython = MASONRY_PYTHON;
+const std::string kSource = MASONRY_SOURCE_DIR;
+
+struct Outcome {
+  int rc = 0;
+  std::string out, err;
+};
+
+Outcome validate(const Scratch& dir, const std::string& args) {
+  const std::string out = (dir.path / "out").string(), err = (dir.path / "err").string();
+  Outcome o;
+  o.rc = test::run(kExe + " validate --quiet " + args + " >" + out + " 2>" + err);
+  o.out = test::read(out);
+  o.err = test::read(err);
+  return o;
+}
+
+// The table's row of `benchmark`.
+std::string row(const std::string& table, const std::string& benchmark) {
+  const size_t at = table.find("\n" + benchmark + " ");
+  if (at == std::string::npos) return "";
+  return table.substr(at + 1, table.find('\n', at + 1) - at - 1);
+}
+
+TEST(ValidateSolver, TheExampleSolverPassesAndACopyTenPercentOffFails) {
+  Scratch dir("validate-solver-example");
+  const std::string only = " --only block-topples block-reaction block-slides block-least-friction";
+  const Outcome ok = validate(dir, "--solver '" + kPython + " " + kSource + "/examples/toppling_solver.py {case} {out}' --solver-name toppling-py" + only);
+  EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
+  EXPECT_NE(row(ok.out, "block-topples").find("toppling-py"), std::string::npos) << ok.out;
+  EXPECT_NE(row(ok.out, "block-topples").find("pass"), std::string::npos) << ok.out;
+  EXPECT_NE(row(ok.out, "block-reaction").find("pass"), std::string::npos) << ok.out;
+  // Judged as PRD: the DEM's sliding benchmark has no PRD tolerance, and PRD's least friction
+  // angle is not in a results file.
+  EXPECT_NE(row(ok.out, "block-slides").find("n/a"), std::string::npos) << ok.out;
+  EXPECT_NE(row(ok.out, "block-least-friction").find("n/a"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("2 of 2 passed, 2 not applicable"), std::string::npos) << ok.out;
+
+  const Outcome wrong = validate(dir, "--solver '" + kPython + " " + kSource + "/tests/validate/wrong_toppling_solver.py {case} {out}' --solver-name wrong-py" + only);
+  EXPECT_EQ(wrong.rc, 1) << wrong.out << wrong.err;
+  EXPECT_NE(wrong.out.find("FAIL block-topples (wrong-py): expected capacity 0.463648 +- 0.001 m"), std::string::npos) << wrong.out;
+  EXPECT_NE(wrong.out.find("obtained 0.5093"), std::string::npos) << wrong.out;  // 1.1 x its 0.463
+  // Its files are kept for the failure, and named.
+  EXPECT_NE(wrong.out.find("The solver's runs (case.json, out/, solver.log): "), std::string::npos) << wrong.out;
+}
+
+TEST(ValidateSolver, ASolverThatFailsGivesAnErrorRowWithTheReason) {
+  Scratch dir("validate-solver-errors");
+  struct Case_ {
+    std::string command, needle;
+  };
+  // A solver that writes this file as its results.
+  const auto writes = [&](const std::string& name, const std::string& json) {
+    const std::string file = (dir.path / name).string();
+    test::write(file, json);
+    return "cp " + file + " {out}/results.json";
+  };
+  const std::vector<Case_> cases = {
+      {"exit 3", "the solver exited with status 3"},
+      {"echo it broke >&2; exit 1", "the solver exited with status 1 (last line of its output: it broke)"},
+      {"true", "the solver wrote no {out}/results.json"},
+      {"sleep 20", "the solver ran past 0.5 s (--solver-timeout) and was stopped"},
+      // The reader's line: the file and the JSON path.
+      {writes("a.json", R"({"format": "masonry-results/1", "method": "x", "case": "c", "stopped": "collapse", "steps": []})"),
+       "results.json: results: field 'capacity' is required"},
+      {writes("b.json", R"({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0.5, "stopped": "collapse",
+                            "steps": [{"step": 0, "d": 0}, {"step": 1, "d": 0.1}]})"),
+       "results.json: results: field 'capacity' = 0.5 m is outside [0, the last step's d = 0.1 m]"},
+      {writes("c.json", R"({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0, "stopped": "collapse",
+                            "steps": [{"step": 0, "d": 0, "reactions": [{"support": "block", "force": [0, 1]}]}]})"),
+       "results.json: steps[0].reactions[0]: field 'support': block \"block\" is not a support of the case"},
+      {writes("d.json", R"({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0, "stopped": "error",
+                            "message": "no convergence", "steps": []})"),
+       "run stopped: error (no convergence)"},
+  };
+  for (const Case_& c : cases) {
+    const Outcome o = validate(dir, "--solver '" + c.command + "' --solver-timeout 0.5 --only block-topples");
+    EXPECT_EQ(o.rc, 1) << c.command << "\n" << o.out << o.err;
+    EXPECT_NE(row(o.out, "block-topples").find("ERROR"), std::string::npos) << o.out;
+    const size_t at = o.out.find("ERROR block-topples (solver): ");
+    ASSERT_NE(at, std::string::npos) << o.out;
+    const std::string line = o.out.substr(at, o.out.find('\n', at) - at);
+    EXPECT_NE(line.find(c.needle), std::string::npos) << line << "\n  expected: " << c.needle;
+  }
+}
+
+TEST(ValidateSolver, AThresholdRunsTheSolverAtEveryBisectionPoint) {
+  Scratch dir("validate-solver-threshold");
+  // A solver that reads the case (stands when dem.friction_angle >= 25 degrees) and counts its runs.
+  const std::string solver = (dir.path / "friction.py").string(), calls = (dir.path / "calls").string();
+  test::write(solver, "import json, os, sys\n"
+                      "case = json.load(open(sys.argv[1]))\n"
+                      "open(sys.argv[3], 'a').write('%r\\n' % case['motion']['max_steps'])\n"
+                      "stands = case['dem']['friction_angle'] >= 25\n"
+                      "json.dump({'format': 'masonry-results/1', 'method': 'friction', 'case': case['name'], 'capacity': 0.0,\n"
+                      "           'stopped': 'max_steps' if stands else 'collapse', 'steps': [{'step': 0, 'd': 0.0}] if stands else []},\n"
+                      "          open(os.path.join(sys.argv[2], 'results.json'), 'w'))\n");
+  const std::string cat = (dir.path / "cat.json").string();
+  test::write(cat, R"({"format": "masonry-catalogue/1", "benchmarks": [{"name": "phi", "title": "t", "source": "by construction",
+    "case": {"file": ")" + kSource + R"(/cases/tilting-block.json"}, "quantity": "threshold",
+    "search": {"parameter": "dem.friction_angle", "range": [10, 40], "resolution": 1}, "expected": 25,
+    "methods": {"prd": {"tolerance": {"absolute": 1, "why": "the bisection's resolution"}}}}]})");
+  const Outcome o = validate(dir, "--catalogue " + cat + " --solver '" + kPython + " " + solver + " {case} {out} " + calls + "'");
+  EXPECT_EQ(o.rc, 0) << o.out << o.err;
+  // Both ends, then halving 30 degrees to under 1: 5 midpoints; every run of the structure as it
+  // stands (motion.max_steps 0).
+  const std::string runs = test::read(calls);
+  EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 7) << runs;
+  EXPECT_EQ(runs.find_first_not_of("0\n"), std::string::npos) << runs;
+  EXPECT_NE(row(o.out, "phi").find("pass"), std::string::npos) << o.out;
+}
+
+TEST(ValidateSolver, BadOptionsAreRefused) {
+  Scratch dir("validate-solver-options");
+  EXPECT_EQ(validate(dir, "--solver-name x").rc, 2);  // without --solver
+  EXPECT_EQ(validate(dir, "--solver true --solver-as fem").rc, 2);
+  EXPECT_EQ(validate(dir, "--solver true --solver-timeout -1").rc, 2);
+}
+
+}  // namespace
+}  // namespace masonry
