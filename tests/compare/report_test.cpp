@@ -35,10 +35,12 @@ TEST(CompareCommand, ToleranceGateSetsTheExitCode) {
   const test::Scratch scratch("compare-gate");
   const fs::path d = scratch.path;
   ASSERT_EQ(run(std::string(MASONRY_EXE) + " prd " + kArch + " --out " + (d / "a").string() + " 2>/dev/null"), 0);
-  // b: the same run with its capacity doctored to 1.2 times.
+  // b: the same run with its capacity doctored to 1.2 times, and its steps' d with it (the
+  // reader refuses a capacity beyond the last step).
   fs::create_directories(d / "b");
   auto j = nlohmann::ordered_json::parse(read(d / "a" / "results.json"));
   j["capacity"] = j["capacity"].get<double>() * 1.2;
+  for (auto& s : j["steps"]) s["d"] = s["d"].get<double>() * 1.2;
   write(d / "b" / "results.json", j.dump());
   write(d / "tol.json", R"({"capacity": 0.05, "thrust": 0.10, "hinges": true})");
   const std::string base = std::string(MASONRY_EXE) + " compare " + kArch + " --quiet --tolerances " + (d / "tol.json").string();
