@@ -85,13 +85,13 @@ struct HeldCorner {
 struct DemHold {
   std::string hold_end;           // "equilibrium", "collapse" or "undecided"
   bool bracket = false;           // a trial of the collapse bracket
-  long long cycles = 0;           // of the hold
-  long long move_cycles = 0;      // of the move before it
-  double lag = 0.0;               // m: how far the structure lagged the supports at the end of the move
+  long long cycles = 0;           // of the move and the hold
+  long long move_cycles = 0;      // of the move
+  double lag = 0.0;               // what the structure travelled during the hold over what it did during the move
   double hold_time = 0.0;         // s, model time of the hold
-  double unbalanced_ratio = 0.0;  // largest unbalanced force over the block's weight
+  double unbalanced_ratio = 0.0;  // of the last cycle: max over free blocks of max(|F|, |M|/r) / W
   double max_speed = 0.0;         // m/s
-  double drift = 0.0;             // m, largest block travel during the hold
+  double drift = 0.0;             // m, largest block displacement since the hold began
   long long contact_points = 0;
   double max_overlap = 0.0;       // m
 };
@@ -251,7 +251,7 @@ void write_results(const std::string& dir, const RunResult& r, const Case& c);
 // `c`, by masonry or by an outside solver, into a RunResult. Only format, method, case, capacity,
 // stopped and the steps' step and d are required; what a file leaves out stays empty (numbers
 // it does not give are NaN: energy, timing.total_s), and total_weight comes from the case. Throws
-// std::runtime_error, one line naming the file and the JSON path ("steps[3].d"), for a field of
+// std::runtime_error, one line naming the file and the JSON path ("steps[3]: field 'd' ..."), for a field of
 // the wrong type, an unknown field, or results that do not fit each other or the case: a
 // capacity outside [0, the last d], d decreasing, step indices not consecutive, stable_steps
 // other than the last equilibrium's index, an unknown status, a block, support or joint the
