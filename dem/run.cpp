@@ -27,6 +27,25 @@ double support_travel_per_d(const Case& c) {
   return v > 0 ? v : 1.0;
 }
 
+// The servo's largest acceleration of the fastest support point, over gravity (dem::move): a
+// support that accelerates away from a block faster than gravity leaves it behind (joints carry
+// no tension). The paper's scenes stay below it at the default rates (the pointed arch's
+// supports reach 0.34 g); the cathedral's settling pier brakes at up to 1.6 g, pushing up into
+// the structure, and is held to 1 g.
+constexpr double kMoveAccel = 1;
+
+// The largest speed of a point of a moving support per unit speed of d, m/m: over the supports'
+// vertices, |translation + rotation x (vertex - about)|. The servo's acceleration limit reads it.
+double support_point_speed_per_d(const Case& c) {
+  double v = 0;
+  for (const SupportMotion& sm : c.motion.supports)
+    for (const Vec2& p : c.blocks[sm.block].vertices) {
+      const Vec2 r = p - sm.about;
+      v = std::max(v, (sm.translation + sm.rotation * Vec2(-r.y(), r.x())).norm());
+    }
+  return v > 0 ? v : 1.0;
+}
+
 // One attempt to reach d1 from an equilibrium at d0: move, then hold.
 struct Attempt {
   HoldOutcome hold;
@@ -96,6 +115,7 @@ void record_settings(Run& u) {
                   {"timestep_factor", s.timestep_factor},
                   {"critical_dt", u.m.critical_dt()},
                   {"dt", u.m.dt()},
+                  {"mass_scale", u.m.mass_scale()},
                   {"equilibrium_tolerance", s.equilibrium_tolerance},
                   {"velocity_tolerance", s.velocity_tolerance},
                   {"hold_time", s.hold_time},
@@ -131,6 +151,8 @@ void emit(Run& u, const HoldOutcome& h, long long cycles, long long move_cycles,
   rec.extra["unbalanced_ratio"] = u.m.unbalanced_ratio();
   rec.extra["max_speed"] = u.m.max_speed();
   rec.extra["drift"] = h.drift;
+  if (h.end == HoldEnd::creep || h.end == HoldEnd::undecided)
+    rec.extra["cap_travel"] = {{"first_half", h.first_half}, {"second_half", h.second_half}};
   rec.extra["contact_points"] = u.m.contact_points();
   rec.extra["max_overlap"] = u.m.max_overlap();
   require_finite(rec);
@@ -187,11 +209,19 @@ bool settle(Run& u) {
   if (h0.end == HoldEnd::equilibrium) u.r.capacity = 0;
   emit(u, h0, h0.cycles, 0, false, 0.0);  // absolute gaps: the settled crack pattern
   if (h0.end != HoldEnd::equilibrium) {
+    // A creep at d = 0 is not taken for a collapse: with no equilibrium below it to bracket
+    // against, nothing locates a limit point.
     u.r.collapsed = h0.end == HoldEnd::collapse;
     u.r.status = u.r.collapsed ? RunStatus::collapse : RunStatus::undecided;
-    if (!u.r.collapsed)
-      u.r.message = "the initial configuration neither settled nor ran away within the hold cap (" + std::to_string(u.s.hold_time) +
-                    " s): no capacity";
+    std::ostringstream msg;
+    if (h0.end == HoldEnd::creep)
+      msg << "the initial configuration neither settled nor ran away within the hold cap (" << u.s.hold_time
+          << " s): it creeps without slowing down (" << h0.second_half << " m over the last half cap after " << h0.first_half
+          << " m): no capacity";
+    else if (!u.r.collapsed)
+      msg << "the initial configuration neither settled nor ran away within the hold cap (" << u.s.hold_time
+          << " s) and three more, its motion still dying out: no capacity; a longer dem.hold_time may settle it";
+    u.r.message = msg.str();
     return false;
   }
   u.settled_gaps = u.m.corner_gaps(u.joints);
@@ -277,18 +307,32 @@ void close(Run& u, const Failure& f) {
   u.m.restore(f.state);
   emit(u, f.attempt, u.bracket > 0);
   u.r.extra["collapse_bracket"] = {{"equilibrium", u.d_eq}, {"failed", f.d}, {"width", f.d - u.d_eq}, {"trials", f.trials}};
-  // A collapse shown anywhere beyond the capacity makes the run a collapse; the bracket's upper
-  // end may still be a hold that had not decided when the cap came.
+  // A collapse shown anywhere beyond the capacity makes the run a collapse. So does a limit point
+  // located within the bracket: the last equilibrium lies within the bracket's width of a state
+  // that creeps without slowing down (dem::HoldEnd::creep), which is how a structure just past
+  // its limit point moves, since the growth of its collapse mode tends to zero there (the
+  // pointed arch's limit, say, is reached with no runaway to see). A located collapse needs no
+  // runaway, only that no equilibrium was found at the bracket's upper end.
   bool any_collapse = false;
   for (const auto& t : f.trials) any_collapse = any_collapse || t["end"] == "collapse";
-  u.r.collapsed = any_collapse;
+  const double width = f.d - u.d_eq;
+  const bool limit_point = f.attempt.hold.end == HoldEnd::creep && width <= (u.bracket > 0 ? u.bracket : u.s.step) * (1 + 1e-9);
+  u.r.collapsed = any_collapse || limit_point;
   u.r.status = u.r.collapsed ? RunStatus::collapse : RunStatus::undecided;
-  if (!u.r.collapsed) {
-    std::ostringstream msg;
-    msg << "the hold at d = " << f.d << " m neither settled nor ran away within the hold cap (" << u.s.hold_time
-        << " s): the capacity " << u.d_eq << " m is the last equilibrium, not a located collapse";
-    u.r.message = msg.str();
+  std::ostringstream msg;
+  if (!any_collapse && limit_point) {
+    msg << "limit point: no equilibrium at d = " << f.d << " m, which creeps without slowing down (" << f.attempt.hold.second_half
+        << " m over the last half cap after " << f.attempt.hold.first_half << " m), " << width
+        << " m past the last equilibrium";
+    u.r.extra["limit_point"] = true;
+  } else if (!u.r.collapsed) {
+    msg << "the hold at d = " << f.d << " m neither settled nor ran away within the hold cap (" << u.s.hold_time << " s"
+        << (f.attempt.hold.end == HoldEnd::creep ? "): it creeps without slowing down, but the collapse bracket ["
+                                                  : ") and three more, its motion still dying out; the collapse bracket [")
+        << u.d_eq << ", " << f.d << "] m is wider than its tolerance: the capacity " << u.d_eq
+        << " m is the last equilibrium, not a located collapse";
   }
+  u.r.message = msg.str();
 }
 
 }  // namespace
@@ -305,7 +349,9 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   // snaps the pointed arch by 4 mm (0.2% of its size) to a new equilibrium near d = 0.09 m.
   u.lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
   u.lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
+  u.lim.creep_floor = std::max(0.01 * c.prd.contact_tolerance, 1e-9 * scene_size(c));
   u.ke_height_per_d = s.kinetic_ratio * support_travel_per_d(c);
+  u.lim.move_accel = kMoveAccel * kReferenceGravity / support_point_speed_per_d(c);
   u.bracket = s.bracket_fraction * s.step;
   record_settings(u);
   try {

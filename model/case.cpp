@@ -203,7 +203,11 @@ void check_scales(const Case& c, const Reader& r) {
   between(c.prd.contact_tolerance, fine, 0.1 * L, "prd", "contact_tolerance", "1e-9 to 0.1 times the scene size");
   if (c.prd.event_tolerance > 0) between(c.prd.event_tolerance, fine, 0.1 * L, "prd", "event_tolerance", "1e-9 to 0.1 times the scene size");
   if (c.prd.max_step > 0) between(c.prd.max_step, fine, L, "prd", "max_step", "1e-9 to 1 times the scene size");
-  if (c.dem.collapse_drift > 0) between(c.dem.collapse_drift, fine, L, "dem", "collapse_drift", "1e-9 to 1 times the scene size");
+  // A drift below 1e-4 of the scene is not evidence of a collapse: the elastic settling under
+  // gravity and a hinge snapping to its neighbouring joint move blocks that far (the pointed
+  // arch's snap: 4 mm, 0.2% of it), and 1e-9 of the scene made the settling itself a collapse.
+  if (c.dem.collapse_drift > 0)
+    between(c.dem.collapse_drift, 1e-4 * L, L, "dem", "collapse_drift", "1e-4 to 1 times the scene size: a smaller drift is the elastic settling");
   // The weight and what the supports travel over the run: finite, so energies and ratios are.
   double W = 0;
   for (const Block& b : c.blocks)
