@@ -231,12 +231,10 @@ MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, do
   // rate towards the end, so they stop without a shock: a block near its friction limit on a
   // support that stops at once slips (the tilting block slid 1.5 degrees early).
   //
-  // The rates are relative (0.2% up, 2% down per cycle), so the supports' acceleration grows as
-  // the time step shrinks: with joints stiff against the weights they carry (a tilting block at
-  // kn 2e14 Pa/m, or at density 1e-3 kg/m^3), braking at 2% per cycle decelerated the slab at 90
-  // times gravity and threw the block off it. A support that accelerates away from a block
-  // faster than gravity pulls the block after it parts from it (joints carry no tension), so
-  // the servo's acceleration is also capped at lim.move_accel, a fraction of gravity.
+  // The rates are relative (0.2% up, 2% down per cycle), so the supports' acceleration grows with
+  // the speed and as the time step shrinks, and a structure on an accelerating support feels it
+  // as a tilt: the servo's acceleration is also capped at lim.move_accel, a hundredth of gravity
+  // (dem_run's kMoveAccel has the measurements).
   const double floor = (d1 - d0) / s.hold_time;
   const double per = default_cycles_per_cycle(s);
   const double kUp = std::pow(1.002, per), kDown = std::pow(0.98, per);

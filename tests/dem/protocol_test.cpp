@@ -189,7 +189,7 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
 
 // A limit point is a located collapse. A wide block (b/h = 2) on a tilting slab slides when the
 // tilt reaches its friction angle, 20.1 degrees, and no sooner (closed form: tan theta =
-// tan phi). The slab turns 0.2 degrees per increment, holds are capped at 0.1 s and the
+// tan phi). The slab turns 0.2 degrees per increment, holds are capped at 0.5 s and the
 // collapse drift is 0.2 m, so past the limit no trial shows a runaway within its cap: each
 // slides slowly on (0.1 degree past, the force along the slope is 0.2% of the weight, and local
 // damping 0.8 leaves a fifth of it), nearer the limit ever more slowly. The bracket still closes
@@ -199,7 +199,7 @@ TEST(DemBracket, ALimitPointIsALocatedCollapse) {
   Case c = test::tilt_case(0.4, 0.2, 20.1);
   c.motion.step = 0.2 * kDeg;
   c.motion.max_steps = 150;
-  c.dem.hold_time = 0.1;
+  c.dem.hold_time = 0.5;
   DemSettings s = DemSettings::from_case(c);
   s.collapse_drift = 0.2;  // m: half the block's width; the slide's drift is then far from it
   const RunResult r = dem_run(c, s);
