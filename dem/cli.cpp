@@ -123,7 +123,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   f.add(sub, "--friction", "dem.friction_angle", K::number, "Friction angle, degrees (default 35)");
   f.add(sub, "--stiffness-reduction", "dem.stiffness_reduction", K::number, "Divide kn and ks by this (default 1; the paper used 10)");
   f.add(sub, "--damping", "dem.damping", K::number, "Local damping coefficient in [0, 1) (default 0.8)");
-  f.add(sub, "--timestep-factor", "dem.timestep_factor", K::number, "Time step / critical time step bound, in (0, 1] (default 0.8)");
+  f.add(sub, "--timestep-factor", "dem.timestep_factor", K::number, "Time step / critical time step bound, in (0, 1] (default 1)");
   f.add(sub, "--equilibrium-tolerance", "dem.equilibrium_tolerance", K::number, "Largest unbalanced force / block weight at equilibrium (default 1e-4)");
   f.add(sub, "--velocity-tolerance", "dem.velocity_tolerance", K::number, "Largest block speed at equilibrium, m/s (default 1e-5)");
   f.add(sub, "--hold-time", "dem.hold_time", K::number, "Model-time cap of one hold, s: a hold that neither settles nor runs away by then is undecided (default 30)");

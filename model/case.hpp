@@ -94,7 +94,7 @@ struct DemOptions {
   double damping = 0.8;              // local non-viscous damping coefficient alpha in [0, 1)
   // dt = timestep_factor * dt_crit, dt_crit = 2 / omega_bound (see DemModel::critical_dt);
   // factors above 1 are refused.
-  double timestep_factor = 0.8;
+  double timestep_factor = 1.0;
   double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight at equilibrium
   double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
   // Model-time cap of one hold, s: a hold ends on equilibrium or on evidence of collapse; one that
