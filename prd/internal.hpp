@@ -49,6 +49,9 @@ struct Endpoint {
   bool held = false;  // kept closed whatever the loads do (PrdOptions::hold_closed): its row an equality
 };
 
+// From this many free blocks up a run's first LP starts from GLPK's advanced basis (solve).
+constexpr int kAdvancedBasisBlocks = 1000;
+
 struct Model {
   const Case* c = nullptr;
   double tol = 1e-5;
@@ -64,6 +67,8 @@ struct Model {
   double force_unit = 1.0;     // N: the LP's objective is the loads over this (build_model)
   int ncols = 0;
   std::unique_ptr<glp_prob, GlpDeleter> lp;
+  bool fresh = true;            // not solved yet (solve)
+  bool advanced_start = false;  // the first solve starts from GLPK's advanced basis whatever the size
   double lp_s = 0;
   long long lp_solves = 0;
   long long basis_evaluations = 0;
@@ -174,7 +179,6 @@ constexpr double kDeg = 180.0 / 3.14159265358979323846;
 Model build_model(const Case& c, double tol);
 std::vector<double> generalised_loads(const Model& m);  // N (and N m / L_b)
 void update_lp(Model& m, double h, double scale, double h_open = 0);
-void quiet_adv_basis(Model& m);
 LpStatus solve(Model& m);
 double objective(const Model& m);        // of the last solve, in LP units
 double col_value(const Model& m, int j);  // column j's primal value (1-based)
