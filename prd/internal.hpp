@@ -68,6 +68,7 @@ struct Model {
   int ncols = 0;
   std::unique_ptr<glp_prob, GlpDeleter> lp;
   bool fresh = true;            // not solved yet (solve)
+  std::vector<double> row_coef;  // per LP row: its entry count and coefficients as GLPK holds them (update_lp)
   bool advanced_start = false;  // the first solve starts from GLPK's advanced basis whatever the size
   double lp_s = 0;
   long long lp_solves = 0;

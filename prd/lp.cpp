@@ -100,6 +100,7 @@ void update_lp(Model& m, double h, double scale, double h_open) {
 
   int ind[7];
   double val[7];
+  if (m.row_coef.empty()) m.row_coef.assign(7 * 2 * m.ends.size(), -1.0);  // count -1: not written yet
   for (size_t e = 0; e < m.ends.size(); ++e) {
     const Endpoint& ep = m.ends[e];
     const Interface& jt = m.joints[ep.joint];
@@ -126,7 +127,16 @@ void update_lp(Model& m, double h, double scale, double h_open) {
         }
       }
       const int row = 2 * static_cast<int>(e) + 1 + r;
-      glp_set_mat_row(lp, row, cnt, ind, val);
+      // GLPK rebuilds a row it is given and drops the basis factorisation: rows whose
+      // coefficients are those it holds (the blocks of both sides did not move) are left alone.
+      double* held = &m.row_coef[7 * (row - 1)];
+      bool same = held[0] == cnt;
+      for (int k = 1; same && k <= cnt; ++k) same = held[k] == val[k];
+      if (!same) {
+        glp_set_mat_row(lp, row, cnt, ind, val);
+        held[0] = cnt;
+        for (int k = 1; k <= cnt; ++k) held[k] = val[k];
+      }
       if (r == 0) {
         double gap = (pj - pi).dot(n);
         if (!ep.closed && h_open > 0 && h_open < h) gap *= h / h_open;
@@ -180,11 +190,8 @@ LpStatus solve(Model& m) {
   // are, and the standard scenes keep theirs (the cathedral's aisles: 1.3% of the weight apart;
   // their mechanisms and capacities are the same from either start).
   if (m.fresh && (m.advanced_start || m.ncols >= 3 * kAdvancedBasisBlocks)) quiet_adv_basis(lp);
-  const bool warm = !m.fresh;
   m.fresh = false;
-  int rc = 0;
-  if (!(warm && glp_warm_up(lp) == 0 && glp_get_prim_stat(lp) == GLP_FEAS && glp_get_dual_stat(lp) == GLP_FEAS))
-    rc = glp_simplex(lp, &parm);
+  int rc = glp_simplex(lp, &parm);
   if (!conclusive(rc)) {
     quiet_adv_basis(lp);
     parm.r_test = GLP_RT_STD;
