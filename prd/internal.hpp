@@ -50,7 +50,10 @@ struct Endpoint {
 };
 
 // From this many free blocks up a run's first LP starts from GLPK's advanced basis (solve).
-constexpr int kAdvancedBasisBlocks = 1000;
+constexpr int kAdvancedBasisBlocks = 300;
+// How the first solve of a model starts: GLPK's advanced basis from kAdvancedBasisBlocks free
+// blocks up (a run), always (a single analysis), or never (the standard basis: tests compare).
+enum class FirstBasis { by_size, advanced, standard };
 
 struct Model {
   const Case* c = nullptr;
@@ -69,7 +72,7 @@ struct Model {
   std::unique_ptr<glp_prob, GlpDeleter> lp;
   bool fresh = true;            // not solved yet (solve)
   std::vector<double> row_coef;  // per LP row: its entry count and coefficients as GLPK holds them (update_lp)
-  bool advanced_start = false;  // the first solve starts from GLPK's advanced basis whatever the size
+  FirstBasis first_basis = FirstBasis::by_size;
   double lp_s = 0;
   long long lp_solves = 0;
   long long basis_evaluations = 0;

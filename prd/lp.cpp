@@ -184,12 +184,15 @@ LpStatus solve(Model& m) {
   // proportion to the rows, so the first LP grows with the square of the blocks. Bixby's
   // advanced basis starts with most columns basic and halves the pivots (a wall of 4000 blocks:
   // 8000 pivots, 3.4 s, became 4040, 1.9 s; the first step of a run on a 2,049-block wall:
-  // 13.8 s of CPU became 4.0 s); the growth stays quadratic, which is the simplex's. The runs
-  // start from it above kAdvancedBasisBlocks free blocks only: a statically indeterminate
-  // structure has many admissible force states, the start decides which one the LP's duals
-  // are, and the standard scenes keep theirs (the cathedral's aisles: 1.3% of the weight apart;
-  // their mechanisms and capacities are the same from either start).
-  if (m.fresh && (m.advanced_start || m.ncols >= 3 * kAdvancedBasisBlocks)) quiet_adv_basis(lp);
+  // 13.8 s of CPU became 4.0 s, a 497-block wall's 0.56 s 0.13 s); the growth stays quadratic,
+  // which is the simplex's. Runs start from it from kAdvancedBasisBlocks free blocks up only: a
+  // statically indeterminate structure has many admissible force states, the start decides
+  // which one the LP's duals are, and the standard scenes (at most 276 blocks) keep theirs (the
+  // cathedral's aisles: 1.3% of the weight apart; mechanisms and capacities are the same from
+  // either start, tests/prd/first_basis_test.cpp).
+  const bool advanced = m.first_basis == FirstBasis::advanced ||
+                        (m.first_basis == FirstBasis::by_size && m.ncols >= 3 * kAdvancedBasisBlocks);
+  if (m.fresh && advanced) quiet_adv_basis(lp);
   m.fresh = false;
   int rc = glp_simplex(lp, &parm);
   if (!conclusive(rc)) {

@@ -23,7 +23,7 @@ const char* start_offsets_name(StartOffsets o) { return o == StartOffsets::keep 
 PrdCheck prd_check(const Case& c, double contact_tolerance) {
   prd::install_glpk_hooks();
   Model m = build_model(c, contact_tolerance);
-  m.advanced_start = true;
+  m.first_basis = FirstBasis::advanced;
   PrdCheck out;
   out.joints = joint_infos(m);
   out.total_weight = total_weight(*m.c);
@@ -372,7 +372,7 @@ FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, cons
   prd::install_glpk_hooks();
   if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("prd: the step must be a positive number");
   Model m = build_model(c, contact_tolerance);
-  m.advanced_start = true;
+  m.first_basis = FirstBasis::advanced;
   auto name = [&](size_t e) {
     const Interface& jt = m.joints[m.ends[e].joint];
     return corner_name(c, jt.i, jt.j, m.ends[e].corner);
