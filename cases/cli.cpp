@@ -5,6 +5,7 @@
 //   masonry cases show CASE --svg FILE
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include "app/command.hpp"
@@ -158,6 +159,51 @@ void add_case_commands(CLI::App& app, Commands& out) {
   cathedral("cathedral-settlement-rotation",
             "Standard scene: the cathedral, third pier settling 1 cm and turning 0.001 rad per step",
             standard_cathedral_settlement_rotation(), "cathedral-settlement-rotation");
+
+  {
+    auto p = std::make_shared<BrickWall>();
+    auto openings = std::make_shared<std::vector<std::string>>();
+    CLI::App* g = cmd->add_subcommand(
+        "wall", "Brick wall in running, stack or header bond, with openings under lintels or arches, on two ground blocks; "
+                "one settles or turns (cases/README.md, 'Brick wall')");
+    add_out(g);
+    g->add_option("--bond", p->bond, "running, stack or header")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, WallBond>{{"running", WallBond::running}, {"stack", WallBond::stack}, {"header", WallBond::header}}))
+        ->default_str("running");
+    g->add_option("--courses", p->courses, "Number of courses")->capture_default_str();
+    g->add_option("--bricks", p->bricks, "Units per course: stretchers, or headers in header bond")->capture_default_str();
+    g->add_option("--brick-length", p->brick_length, "Stretcher length, m")->capture_default_str();
+    g->add_option("--header-length", p->header_length, "Header face length (the brick's width), m; header bond")
+        ->capture_default_str();
+    g->add_option("--course-height", p->course_height, "Course height, m")->capture_default_str();
+    g->add_option("--depth", p->depth, "Out-of-plane thickness of the wall, m")->capture_default_str();
+    g->add_option("--density", p->density, "Density, kg/m3")->capture_default_str();
+    g->add_option("--opening", *openings,
+                  "An opening X,SILL,WIDTH,HEIGHT[,lintel|arch] (m from the wall's left end and base; sill and top move to the "
+                  "nearest course joint; default top: lintel); repeatable");
+    g->add_option("--lintel-bearing", p->lintel_bearing, "A lintel's bearing on each side of its opening, m")->capture_default_str();
+    g->add_option("--arch-thickness", p->arch_thickness, "Thickness of an arch's ring, m")->capture_default_str();
+    g->add_option("--arch-voussoirs", p->arch_voussoirs, "Voussoirs of each arch (0: about one per course height)")
+        ->capture_default_str();
+    g->add_option("--ground-height", p->ground_height, "Height of the two ground blocks, m")->capture_default_str();
+    g->add_option("--ground-split", p->ground_split, "Where the ground splits, m from the wall's left end (default: the middle)");
+    g->add_option("--moving", p->moving, "Which ground block moves: left, right or none")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, MovingGround>{
+            {"none", MovingGround::none}, {"left", MovingGround::left}, {"right", MovingGround::right}}))
+        ->default_str("right");
+    g->add_option("--settlement-step", p->settlement_step, "Settlement of the moving ground per step, m (down)")->capture_default_str();
+    g->add_option("--rotation-step", p->rotation_step,
+                  "Counter-clockwise rotation of the moving ground per step, rad, about the split's top point")
+        ->capture_default_str();
+    g->add_option("--step", p->step, "Path parameter d per step, m")->capture_default_str();
+    g->add_option("--max-steps", p->max_steps, "Largest number of steps")->capture_default_str();
+    gens->push_back({g, "brick wall (generator)", [=] {
+                       BrickWall q = *p;
+                       for (const std::string& o : *openings) q.openings.push_back(parse_wall_opening(o));
+                       return brick_wall(q);
+                     }});
+  }
 
   // Import a drawing.
   auto imp = std::make_shared<DxfImportOptions>();

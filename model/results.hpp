@@ -80,8 +80,8 @@ struct JointInfo {
 };
 
 struct Timing {
-  double total_s = 0.0;  // PRD: wall time of the run without I/O; DEM: the run's thread CPU time
-  double lp_s = 0.0;     // PRD: time in GLPK
+  double total_s = 0.0;  // the run's thread CPU time without I/O (PRD and DEM)
+  double lp_s = 0.0;     // PRD: CPU time in GLPK
   long long lp_solves = 0;
   // PRD (event-driven): evaluations of an LP's final basis at another configuration (where a
   // planned move would end) without simplex iterations, one factorisation each; their time is
