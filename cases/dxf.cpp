@@ -196,8 +196,9 @@ std::map<std::string, LayerProps> read_layers(const std::string& file) {
 std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, double scale, const DxfImportOptions& o) {
   for (const DxfEntity& e : d.curves)
     if (!ignored_layer(e.layer))
-      throw CaseError(path + ": " + printable(e.type) + (e.type == "INSERT" ? " (a block reference: explode it in the drawing)" : "") + " on layer '" +
-                      printable(e.layer) + "' (handle " + printable(e.handle) + ") cannot be a block: draw blocks as closed polylines (or put it on a layer named IGNORE)");
+      throw CaseError(path + ": " + printable(e.type) + (e.type == "INSERT" ? " (a block reference: explode it in the drawing)" : "") +
+                      " on layer '" + printable(e.layer) + "' (handle " + printable(e.handle) +
+                      ") cannot be a block: draw blocks as closed polylines (or put it on a layer named IGNORE)");
   const auto layers = read_layers(o.layers_file);
   std::vector<Piece> out;
   std::map<std::string, int> count;
@@ -215,13 +216,15 @@ std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, doubl
     k.handle = p.e.handle;
     for (const DxfVertex& v : p.v)
       if (!(std::max(std::abs(v.x), std::abs(v.y)) * scale <= kMaxCoordinate))
-        throw CaseError(path + ":" + std::to_string(v.line) + ": " + p.e.name() + ": group codes 10/20: a vertex beyond 1e5 m from the origin (README, \"Ranges\"; a drawing unit is " + fmt::g(scale, 6) + " m)");
+        throw CaseError(path + ":" + std::to_string(v.line) + ": " + p.e.name() +
+                        ": group codes 10/20: a vertex beyond 1e5 m from the origin (README, \"Ranges\"; a drawing unit is " +
+                        fmt::g(scale, 6) + " m)");
     for (size_t i = 0; i < p.v.size(); ++i) {
       const DxfVertex &a = p.v[i], &b = p.v[(i + 1) % p.v.size()];
       if (!append_arc(k.v, scale * Vec2(a.x, a.y), scale * Vec2(b.x, b.y), a.bulge, o.arc_tolerance))
         throw CaseError(path + ":" + std::to_string(a.line) + ": " + p.e.name() + ": group code 42 = " + fmt::g(a.bulge, 6) +
-                        ": the arc needs more than " + std::to_string(static_cast<long>(kMaxChordsPerArc)) + " chords within --arc-tolerance " + fmt::g(o.arc_tolerance, 6) +
-                        " m (a drafting error, or give a larger tolerance)");
+                        ": the arc needs more than " + std::to_string(static_cast<long>(kMaxChordsPerArc)) +
+                        " chords within --arc-tolerance " + fmt::g(o.arc_tolerance, 6) + " m (a drafting error, or give a larger tolerance)");
     }
     // The closing vertex repeated on the first (some programs write it): drop it.
     if (k.v.size() > 3 && (k.v.front() - k.v.back()).norm() <= 1e-12 * (1 + k.v.front().norm())) k.v.pop_back();
@@ -249,7 +252,8 @@ std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, doubl
   std::vector<const DxfText*> named_by(out.size(), nullptr);
   for (const DxfText& t : d.texts) {
     if (ignored_layer(t.e.layer) || t.text.empty()) continue;
-    if (t.e.off_plane) throw CaseError(path + ":" + std::to_string(t.e.line) + ": " + t.e.name() + ": group codes 210/220/230: drawn in another plane than x-y");
+    if (t.e.off_plane)
+      throw CaseError(path + ":" + std::to_string(t.e.line) + ": " + t.e.name() + ": group codes 210/220/230: drawn in another plane than x-y");
     const Vec2 at = scale * Vec2(t.x, t.y);
     for (const int i : grid.near(at)) {
       Piece& k = out[i];

@@ -491,8 +491,8 @@ DxfDrawing read_dxf(const std::string& path) {
     const std::string_view v = trim(p.value);
     if (p.code == 0 && v == "EOF") return d;
     if (p.code != 0 || v != "SECTION")
-      in.fail(p.line, "group code " + std::to_string(p.code) + " = '" + printable(std::string(v), 40) + "' where a section (0 SECTION) or the end (0 EOF) is expected" +
-                          (sections ? "" : ": not a DXF drawing"));
+      in.fail(p.line, "group code " + std::to_string(p.code) + " = '" + printable(std::string(v), 40) +
+                          "' where a section (0 SECTION) or the end (0 EOF) is expected" + (sections ? "" : ": not a DXF drawing"));
     sections = true;
     const Pair n = must_next(in, "a section's head");
     if (n.code != 2) in.fail(n.line, "a section without its name (group code 2)");
