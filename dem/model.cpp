@@ -73,7 +73,7 @@ void DemModel::Impl::setup() {
 void DemModel::Impl::check_settings() const {
   // The case loader's own check (one definition of every range), for settings a study derives
   // in code; then the motion's increment, which DemSettings carries beside them.
-  check_dem_options(s, c.source);
+  check_dem_options(s, c.source, s.allow_unstable_timestep);
   if (!(s.step > 0) || !std::isfinite(s.step)) throw CaseError(c.source + ": motion: field 'step' must be a positive number of m");
   if (s.max_steps < 0) throw CaseError(c.source + ": motion: field 'max_steps' must be >= 0");
 }

@@ -15,6 +15,10 @@ namespace masonry {
 
 using Vec2 = Eigen::Vector2d;
 
+// m: how far from the origin a vertex, load point or pivot may lie (README, "Ranges"): 100 km,
+// far beyond any structure, near enough that every derived quantity keeps its digits.
+inline constexpr double kMaxCoordinate = 1e5;
+
 // Bad input: the message is one line naming the file, the block and the field.
 struct CaseError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -133,8 +137,9 @@ struct DemOptions {
 };
 
 // Refuses (CaseError, naming `source`, "dem" and the field) settings outside their ranges: the
-// loader's own check, for settings a study derives in code.
-void check_dem_options(const DemOptions& d, const std::string& source);
+// loader's own check, for settings a study derives in code. A time-step factor above 1 only
+// where `allow_unstable_timestep` (the DEM's blow-up tests).
+void check_dem_options(const DemOptions& d, const std::string& source, bool allow_unstable_timestep = false);
 
 struct Case {
   std::string source;  // file name, for messages

@@ -61,8 +61,19 @@ ojson to_json(const RunResult& r, const Case& c) {
   j["units"] = "SI: m, N, J, s, rad";
   j["method"] = r.method;
   j["case"] = r.case_name;
-  j["capacity"] = json_number(r.capacity);
-  j["stable_steps"] = r.stable_steps;
+  // A run still going is written as its records stand: a solver hands its results out as it
+  // records a step, and may count that step only after (a DEM run killed there had written
+  // capacity 0.028 m beside its equilibrium record at 0.029 m).
+  double capacity = r.capacity;
+  int stable_steps = r.stable_steps;
+  if (r.status == RunStatus::running)
+    for (const StepRecord& s : r.steps)
+      if (is_equilibrium(r, s) && s.d > capacity) {
+        capacity = s.d;
+        ++stable_steps;
+      }
+  j["capacity"] = json_number(capacity);
+  j["stable_steps"] = stable_steps;
   j["collapsed"] = r.collapsed;
   j["stopped"] = status_name(r.status);
   if (!r.message.empty()) j["message"] = r.message;
@@ -138,12 +149,20 @@ ojson to_json(const RunResult& r, const Case& c) {
   return j;
 }
 
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return o + "\"";
+}
+
 std::string steps_csv(const RunResult& r) {
   std::ostringstream o;
   o.precision(12);
   o << "step,d_m,energy_J,open_corners,cracked_joints";
   if (!r.steps.empty())
-    for (const Reaction& x : r.steps.front().reactions) o << ",Fx_" << x.support << "_N,Fy_" << x.support << "_N";
+    for (const Reaction& x : r.steps.front().reactions)
+      o << "," << csv_field("Fx_" + x.support + "_N") << "," << csv_field("Fy_" + x.support + "_N");
   o << "\n";
   for (const StepRecord& s : r.steps) {
     o << s.index << "," << s.d << "," << s.energy << "," << s.open_corners.size() << "," << s.cracked.size();

@@ -153,6 +153,9 @@ nlohmann::ordered_json json_number(double x);
 nlohmann::ordered_json prd_on_run_json(const PrdOnRun& p);
 
 nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
+// A CSV field as RFC 4180 writes it: quoted, quotes doubled, where it holds a comma, a quote or a
+// line break (an id may hold any of them), so every row of a file has the header's columns.
+std::string csv_field(const std::string& s);
 // One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.
 std::string steps_csv(const RunResult& r);
 // Writes DIR/results.json and DIR/steps.csv, each through a temporary file and a rename, so a

@@ -72,7 +72,7 @@ Prepared prepare(const SweepInput& in, const SweepOptions& o) {
 }
 
 Recorder::Recorder(Prepared& pr, const SweepOptions& o, int workers, const std::string& where)
-    : pr_(pr), o_(o), file_(pr.csv_path, std::ios::binary | std::ios::app) {
+    : pr_(pr), o_(o), file_(pr.csv_path, std::ios::binary | std::ios::app), progress_("sweep", pr.todo.size()) {
   if (!file_) throw SweepError(pr.csv_path + ": cannot append");
   if (o_.quiet) return;
   int prd = 0;
@@ -90,12 +90,12 @@ void Recorder::operator()(const SweepRow& r) {
   if (o_.quiet) return;
   const SweepRun& run = pr_.plan.runs[r.index];
   const std::string label = run_label(pr_.plan, run);
-  if (r.status == RunStatus::error)
-    std::fprintf(stderr, "sweep: [%zu/%zu] run %d %s (%s): error: %s\n", done_, pr_.todo.size(), r.index, r.method.c_str(), label.c_str(),
-                 r.message.c_str());
-  else
-    std::fprintf(stderr, "sweep: [%zu/%zu] run %d %s (%s): %s, capacity %.6g m, %.3g s\n", done_, pr_.todo.size(), r.index,
-                 r.method.c_str(), label.c_str(), status_name(r.status), r.capacity, r.time_s);
+  char b[96];
+  if (r.status == RunStatus::error) std::snprintf(b, sizeof b, "error after %.3g s", r.time_s);
+  else std::snprintf(b, sizeof b, "%s, capacity %.6g m in %.3g s", status_name(r.status), r.capacity, r.time_s);
+  std::cerr << progress_.line(done_, "run " + std::to_string(r.index) + " " + r.method + " (" + label + "): " + b +
+                                         (r.status == RunStatus::error ? ": " + r.message : std::string()))
+            << "\n" << std::flush;
 }
 
 int Recorder::finish() {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "runs/progress.hpp"
 #include "sweep/sweep.hpp"
 
 namespace masonry::sweep_detail {
@@ -34,6 +35,7 @@ class Recorder {
   const SweepOptions& o_;
   std::ofstream file_;
   size_t done_ = 0;
+  StudyProgress progress_;
 };
 
 // Runs `todo`: PRD runs on the calling thread, then DEM runs on `jobs` threads. `done` is called

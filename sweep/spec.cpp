@@ -89,18 +89,6 @@ SweepAxis parse_axis(const SpecReader& r, const std::string& key, const ojson& v
   return a;
 }
 
-// "line 3, column 5" out of nlohmann's parse_error message, as FILE:3:5.
-std::string json_error(const std::string& source, const std::string& what) {
-  int line = 0, col = 0;
-  const size_t at = what.find("at line ");
-  std::string reason = what;
-  const size_t colon = what.find(": ", at == std::string::npos ? 0 : at);
-  if (colon != std::string::npos) reason = what.substr(colon + 2);
-  if (at != std::string::npos && std::sscanf(what.c_str() + at, "at line %d, column %d", &line, &col) == 2)
-    return source + ":" + std::to_string(line) + ":" + std::to_string(col) + ": malformed JSON: " + reason;
-  return source + ": malformed JSON: " + reason;
-}
-
 bool is_dem_option(const std::string& key) { return key.rfind("dem.", 0) == 0; }
 
 uint64_t fnv1a(const std::string& s) {
@@ -123,14 +111,7 @@ std::string hex16(uint64_t h) {
 std::string value_text(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
 SweepSpec parse_sweep(const std::string& text, const std::string& source) {
-  ojson doc;
-  try {
-    doc = ojson::parse(text);
-  } catch (const ojson::parse_error& e) {
-    throw SweepError(json_error(source, e.what()));
-  } catch (const ojson::out_of_range&) {
-    throw SweepError(source + ": malformed JSON: a number is out of range (not a finite number)");
-  }
+  ojson doc = parse_document<SweepError, ojson>(text, source);
   const SpecReader r{source};
   if (!doc.is_object()) r.fail("sweep", "must be a JSON object");
   for (auto it = doc.begin(); it != doc.end(); ++it) {

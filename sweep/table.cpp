@@ -19,13 +19,6 @@ const char* const kTail[] = {"capacity", "stopped", "time_s", "diff_prd", "requi
 // it wrote, so a row computed from them (diff_prd) is the same whether or not the sweep stopped.
 std::string num(double x) { return std::isfinite(x) ? json(x).dump() : ""; }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string o = "\"";
-  for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return o + "\"";
-}
-
 std::string csv_join(const std::vector<std::string>& cells) {
   std::string s;
   for (size_t i = 0; i < cells.size(); ++i) {
@@ -67,6 +60,17 @@ bool parse_number(const std::string& s, double& x) {
   char* end = nullptr;
   x = std::strtod(s.c_str(), &end);
   return end == s.c_str() + s.size() && std::isfinite(x);
+}
+
+// m: the end of a run's loading path, step x max_steps with the run's own values where it varies them.
+double path_end(const SweepPlan& p, const SweepRun& run) {
+  double step = p.base.motion.step, steps = p.base.motion.max_steps;
+  for (size_t k = 0; k < p.keys.size(); ++k) {
+    if (!run.values[k].is_number()) continue;
+    if (p.keys[k] == "motion.step") step = run.values[k].get<double>();
+    if (p.keys[k] == "motion.max_steps") steps = run.values[k].get<double>();
+  }
+  return step * steps * (1 + 1e-9);
 }
 
 const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
@@ -122,7 +126,10 @@ std::string sweep_csv_line(const SweepPlan& p, const SweepRow& r, const SweepTab
   cells.push_back(num(r.time_s));
   cells.push_back(diff ? num(*diff) : std::string());
   cells.push_back(r.required_friction_angle ? num(*r.required_friction_angle) : std::string());
-  cells.push_back(r.message);
+  std::string message = r.message;  // one line, as every message is meant to be
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::replace(message.begin(), message.end(), '\r', ' ');
+  cells.push_back(message);
   return csv_join(cells);
 }
 
@@ -170,11 +177,13 @@ SweepTable read_sweep_csv(const SweepPlan& p, const std::string& text, const std
     ok = ok && status && *status != RunStatus::running;
     if (status) r.status = *status;
     r.message = f[3 + nk + 5];
-    ok = ok && parse_number(f[3 + nk + 2], r.time_s);
-    if (r.status != RunStatus::error) ok = ok && parse_number(f[3 + nk], r.capacity);
+    // A number no run can give (a capacity beyond its path or below 0, a negative time, an angle
+    // beyond 90 degrees) is a row someone or something else wrote: its run is done again.
+    ok = ok && parse_number(f[3 + nk + 2], r.time_s) && r.time_s >= 0;
+    if (r.status != RunStatus::error) ok = ok && parse_number(f[3 + nk], r.capacity) && r.capacity >= 0 && r.capacity <= path_end(p, run);
     double angle = 0;
     if (!f[3 + nk + 4].empty()) {
-      ok = ok && parse_number(f[3 + nk + 4], angle);
+      ok = ok && parse_number(f[3 + nk + 4], angle) && angle >= 0 && angle <= 90;
       r.required_friction_angle = angle;
     }
     if (ok && !t[r.index]) t[r.index] = r;

@@ -8,6 +8,7 @@
 
 #include "app/command.hpp"
 #include "model/results.hpp"
+#include "runs/progress.hpp"
 #include "validate/validate.hpp"
 
 namespace masonry {
@@ -55,7 +56,7 @@ void add_validate_commands(CLI::App& app, Commands& out) {
   sub->add_option("--markdown", o->markdown, "Write the report to this Markdown file");
   sub->add_option("--catalogue", o->catalogue, "A catalogue file (masonry-catalogue/1) instead of the built-in one");
   sub->add_flag("--list", o->list, "List the catalogue's benchmarks and exit");
-  sub->add_flag("--quiet", o->quiet, "No progress lines");
+  sub->add_flag("--quiet", o->quiet, "No progress lines (the table is the command's output, on standard output)");
   out.push_back({sub, [o]() {
                    const Catalogue cat = o->catalogue.empty() ? builtin_catalogue() : load_catalogue(o->catalogue);
                    if (o->list) {
@@ -66,11 +67,13 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                    const std::vector<const Benchmark*> todo = chosen(cat, *o);
                    std::vector<ValidationRow> rows;
                    RunCache cache;
+                   const StudyProgress progress("validate", todo.size());
                    for (size_t k = 0; k < todo.size(); ++k) {
                      const auto part = run_benchmark(cat, *todo[k], cache, [&](const ValidationRow& r) {
                        if (o->quiet) return;
-                       std::fprintf(stderr, "validate [%zu/%zu] %s (%s): %s, %.2f s\n", k + 1, todo.size(), r.benchmark->name.c_str(),
-                                    method_name(r.method), r.pass ? "pass" : "FAIL", r.seconds);
+                       char b[48];
+                       std::snprintf(b, sizeof b, ": %s in %.2f s", r.pass ? "pass" : "FAIL", r.seconds);
+                       std::cerr << progress.line(k + 1, r.benchmark->name + " (" + method_name(r.method) + ")" + b) << "\n" << std::flush;
                      });
                      rows.insert(rows.end(), part.begin(), part.end());
                      // Finished rows are kept even when a later benchmark fails or the run is stopped.
