@@ -169,8 +169,12 @@ def flying_arch():
 
 def wall_with_opening():
     # A running-bond wall of 0.5 x 0.25 m stones, 3 m long and 8 courses (2 m) high, with a
-    # 1 m wide, 1 m high opening in the middle under a 1.5 m lintel; two ground blocks, the right
-    # one settling.
+    # 1 m wide, 1 m high opening in the middle under a 1.5 m lintel, on two ground blocks split
+    # under the opening; the right one turns clockwise about the split, leaning the wall's right
+    # half out (d in rad). PRD forbids sliding, and its mechanism here makes head joints carry
+    # shear with next to no normal force (its sliding check asks 89.9 degrees of friction), which
+    # no joint of the DEM does at any friction angle: the two are not compared on this wall's
+    # capacity (catalogue_entries).
     L, h, w, n = 3.0, 0.25, 0.5, 8
     blocks = [block("ground-L", rect(-0.2, -0.3, 1.5, 0.0), support=True),
               block("ground-R", rect(1.5, -0.3, 3.2, 0.0), support=True)]
@@ -192,10 +196,12 @@ def wall_with_opening():
                 continue
             bid = "lintel" if k == lintel_course and abs(a - 0.75) < 1e-9 else f"c{k}-{a:.2f}"
             blocks.append(block(bid, rect(a, y0, b, y1)))
-    return case("wall with an opening, ground settling",
+    return case("wall with an opening, ground turning",
                 "A running-bond wall 3 m long and 2 m high of 0.5 x 0.25 m stones with a 1 m x 1 m opening under a "
-                "1.5 m lintel; the ground under its right half settles 1 mm per step.",
-                blocks, [{"block": "ground-R", "translation": [0.0, -1.0], "rotation": 0.0}], 0.001, 600)
+                "1.5 m lintel; the ground under its right half turns clockwise about the split under the opening, "
+                "0.5 mrad per step (d in rad).",
+                blocks, [{"block": "ground-R", "translation": [0.0, 0.0], "rotation": -1.0, "about": [1.5, 0.0]}],
+                0.0005, 400)
 
 
 def stack_on_turning_base():
@@ -241,7 +247,7 @@ ZOO = {
 
 # Which zoo members validate --quick runs (the DEM takes a few seconds on each) and the closed
 # forms two of them have besides PRD's answer.
-QUICK = {"stack-on-turning-base", "many-sided-block", "jack-arch", "semicircular-arch-on-piers"}
+QUICK = {"stack-on-turning-base", "jack-arch", "semicircular-arch-on-piers"}
 
 
 def many_sided_topple():
@@ -263,13 +269,35 @@ CLOSED_FORMS = {
 }
 
 
+# Members whose capacities the two methods are not expected to share, and why.
+NOT_COMPARED = {
+    "wall-with-opening": "PRD forbids sliding, and its mechanism makes the head joints carry shear with next to no normal "
+                         "force (its sliding check asks 89.9 degrees of friction); no joint of the DEM carries shear without "
+                         "compression. Both must find the wall standing as drawn.",
+}
+
+
 def catalogue_entries():
-    """The zoo's benchmarks for validate/catalogue.json: the DEM against PRD on every member (3%),
-    and the closed forms where there is one."""
+    """The zoo's benchmarks for validate/catalogue.json: the DEM against PRD on every member (3%)
+    where PRD's sliding check passes at the case's friction angle, the closed forms where there is
+    one, and the structure standing as drawn otherwise."""
     out = []
     for name, draw in ZOO.items():
         c = draw()
         step = c["motion"]["step"]
+        if name in NOT_COMPARED:
+            out.append({
+                "name": f"zoo-{name}-stands",
+                "title": f"The zoo's {c['name']} stands as drawn.",
+                "source": "statics: a running-bond wall on level ground carries its weight",
+                "notes": NOT_COMPARED[name],
+                "quick": True,
+                "case": {"inline": c},
+                "quantity": "stands",
+                "expected": True,
+                "methods": {"prd": {}, "dem": {}},
+            })
+            continue
         out.append({
             "name": f"zoo-{name}",
             "title": f"PRD and the DEM on the zoo's {c['name']}: displacement capacity.",
