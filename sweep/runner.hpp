@@ -36,10 +36,11 @@ class Recorder {
   size_t done_ = 0;
 };
 
-// Runs `todo`: PRD runs on the calling thread, then DEM runs on `jobs` threads. `done` is called
+// Runs `todo`: PRD runs on the calling thread, then DEM runs on `jobs` threads (with `keep`, each
+// row carries its run's files). `done` is called
 // on the calling thread for every finished row (so it may use MPI); `idle`, if given, every few
 // milliseconds while the threads work.
-void execute_runs(const SweepPlan& p, const std::vector<int>& todo, int jobs, const std::function<void(const SweepRow&)>& done,
+void execute_runs(const SweepPlan& p, const std::vector<int>& todo, int jobs, bool keep, const std::function<void(const SweepRow&)>& done,
                   const std::function<void()>& idle);
 
 }  // namespace masonry::sweep_detail
