@@ -88,7 +88,6 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
            std::to_string(prd) + " PRD, " + std::to_string(p.runs.size() - prd) + " DEM), " + std::to_string(s.finished) + " finished, " +
            std::to_string(s.errors) + " without a located capacity (failed, or a DEM hold undecided). Capacity: the last stable d (m); difference: (DEM - PRD) / PRD; tolerance " +
            fmt::g(p.tolerance * 100) + "%.";
-  if (const std::string note = prd_ignores_note(p); !note.empty()) c.lead += " " + note;
   c.has_figure = !s.x.empty() && !s.curves.empty();
   const bool dem = any_dem(p);
   if (friction_x(s) && dem) {
@@ -327,7 +326,6 @@ Table mechanism_table(const std::vector<MechanismShare>& groups, const std::stri
 void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, const SweepSensitivity& sens) {
   d.heading(2, {"Sensitivity of the capacity"});
   d.paragraph({design_text(p) + " The numbers are also in ", Cell("sensitivity.json", CellStyle::code), "."});
-  if (const std::string note = prd_ignores_note(p); !note.empty()) d.paragraph({Cell(note, CellStyle::strong)});
   for (const MethodSensitivity& m : sens.methods) {
     const std::string M = method_name(m.method);
     d.heading(3, {M});
@@ -423,6 +421,7 @@ Document sweep_document(const SweepPlan& p, const SweepTable& t, const SweepSumm
     d.paragraph({"Made with ", Cell(command, CellStyle::code), "; the table is ", Cell("sweep.csv", CellStyle::code), ", the numbers also in ",
                  Cell("sweep.json", CellStyle::code), "."});
   d.paragraph({c.lead});
+  if (const std::string note = prd_ignores_note(p); !note.empty()) d.paragraph({Cell(note, CellStyle::strong)});
   if (c.has_figure) {
     d.heading(2, {"Capacity against the " + x_title(s)});
     d.figure("figures/capacity.svg", "capacity against " + s.x, svg_sweep(p, t, s));
