@@ -390,7 +390,13 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
                    " grouped by their hinges at collapse (PRD: the corners its collapse mechanism opens, a hinge named by the corner it turns "
                    "about; DEM: the hinges of its last equilibrium beyond its settled gaps), then by the members those hinges lie in (block ids "
                    "without their voussoir or course number), which geometry that moves a hinge by a voussoir keeps."});
-      d.table(mechanism_table(m.mechanisms, "hinges at collapse", sens.sampled, m.located));
+      // Hinge sets that group nothing (each its own, as on the cathedral, whose courses and
+      // voussoirs renumber with the geometry) are left to sweep.csv's `hinges` column.
+      if (2 * m.mechanisms.size() <= size_t(m.located) || m.mechanisms.size() <= 12)
+        d.table(mechanism_table(m.mechanisms, "hinges at collapse", sens.sampled, m.located));
+      else
+        d.paragraph({std::to_string(m.mechanisms.size()) + " different sets of hinges over " + std::to_string(m.located) +
+                     " rows (each row's in sweep.csv's column `hinges`): grouped by members only."});
       if (m.members.size() < m.mechanisms.size()) d.table(mechanism_table(m.members, "members with hinges", sens.sampled, m.located));
       if (m.members.size() > 1) {
         d.paragraph({"Each member (or pair of members joined by a hinge) alone: the share of the " + std::string(sens.sampled ? "samples" : "runs") +

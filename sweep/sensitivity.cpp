@@ -297,6 +297,23 @@ MethodSensitivity method_sensitivity(const SweepPlan& p, const SweepTable& t, co
 
 ojson optional_number(const std::optional<double>& x) { return x ? json_number(*x) : ojson(nullptr); }
 
+// {"groups": [...], "left_out": {"groups", "rows"}}: the 50 most frequent groups; a long tail of
+// sets met once (the cathedral's hinge sets) is only counted, each row's set being in sweep.csv.
+ojson groups_json(const std::vector<MechanismShare>& groups, const char* name) {
+  constexpr size_t kListed = 50;
+  ojson list = ojson::array();
+  int rows = 0;
+  for (size_t i = 0; i < groups.size(); ++i) {
+    const MechanismShare& x = groups[i];
+    if (i >= kListed) {
+      rows += x.count;
+      continue;
+    }
+    list.push_back({{name, x.hinges}, {"count", x.count}, {"share", json_number(x.share)}, {"median_capacity", json_number(x.median_capacity)}});
+  }
+  return {{"groups", list}, {"left_out", {{"groups", groups.size() > kListed ? groups.size() - kListed : 0}, {"rows", rows}}}};
+}
+
 }  // namespace
 
 SweepSensitivity sensitivity(const SweepPlan& p, const SweepTable& t) {
@@ -357,18 +374,9 @@ ojson sensitivity_json(const SweepPlan& p, const SweepSensitivity& s) {
       o["nearest"] = near;
       o["r2"] = optional_number(m.r2);
     }
-    ojson mech = ojson::array();
-    for (const MechanismShare& x : m.mechanisms)
-      mech.push_back({{"hinges", x.hinges}, {"count", x.count}, {"share", json_number(x.share)}, {"median_capacity", json_number(x.median_capacity)}});
-    o["mechanisms"] = mech;
-    ojson mem = ojson::array();
-    for (const MechanismShare& x : m.members)
-      mem.push_back({{"members", x.hinges}, {"count", x.count}, {"share", json_number(x.share)}, {"median_capacity", json_number(x.median_capacity)}});
-    o["mechanisms_by_member"] = mem;
-    ojson freq = ojson::array();
-    for (const MechanismShare& x : m.member_frequency)
-      freq.push_back({{"member", x.hinges}, {"count", x.count}, {"share", json_number(x.share)}, {"median_capacity", json_number(x.median_capacity)}});
-    o["hinge_members"] = freq;
+    o["mechanisms"] = groups_json(m.mechanisms, "hinges");
+    o["mechanisms_by_member"] = groups_json(m.members, "members");
+    o["hinge_members"] = groups_json(m.member_frequency, "member");
     ojson params = ojson::object();
     for (const ParameterSensitivity& ps : m.parameters) {
       ojson q;

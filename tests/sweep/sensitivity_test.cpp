@@ -59,6 +59,15 @@ TEST(Sensitivity, ArchCapacityGrowsWithThicknessAndIsZeroBelowMilankovitch) {
   EXPECT_GT(e["elasticity"].get<double>(), 1.0) << e;  // more than in proportion: zero at the least thickness
   EXPECT_EQ(e["n"], 4);                                 // the runs above the least thickness
   EXPECT_EQ(s["methods"]["prd"]["zero_capacity"], 3);
+  // Every run collapses by a mechanism of at least four hinges (a three-hinged arch is statically
+  // determinate: it stands; Heyman 1966), and the groups of hinge sets hold every run.
+  int grouped = 0;
+  for (const json& g : s["methods"]["prd"]["mechanisms"]["groups"]) {
+    const std::string h = g["hinges"];
+    EXPECT_GE(std::count(h.begin(), h.end(), ':'), 4) << h;
+    grouped += g["count"].get<int>();
+  }
+  EXPECT_EQ(grouped, int(t.size()));
   // The report says where the capacity is 0 and that it rises, and draws the tornado chart.
   const std::string md = test::read(d.path / "out" / "report.md");
   EXPECT_NE(md.find("| 0.09, 0.1, 0.104 |"), std::string::npos) << md;
