@@ -34,7 +34,7 @@ for scene in settlement rotation; do
     only=$(jq -c '[.methods.prd.nearest[].sample] | unique' "$dir/$scene/sensitivity.json")
     jq --argjson only "$only" '
         .name += " (PRD and DEM at the samples nearest the 5th, 50th and 95th percentiles)"
-      | .description = "The samples of \(.sample.count) of the PRD sweep beside it whose PRD capacities lie nearest its 5th, 50th and 95th percentiles, run by both methods (reports/sensitivity-cathedral.sh --dem)."
+      | .description = "The samples of the PRD sweep beside it (\(.sample.count) in all) whose PRD capacities lie nearest its 5th, 50th and 95th percentiles, each run by both methods (reports/sensitivity-cathedral.sh --dem)."
       | .methods = ["prd", "dem"] | .sample.one_at_a_time = 0 | .sample.only = $only' \
       "$dir/$scene.sweep.json" > "$dir/$scene-dem.sweep.json"
     "$masonry" sweep "$dir/$scene-dem.sweep.json" --out "$dir/$scene-dem" "$@"

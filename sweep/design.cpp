@@ -2,7 +2,7 @@
 #include <cstdint>
 #include <random>
 
-#include "sweep/sweep.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 
@@ -10,12 +10,7 @@ namespace {
 
 // FNV-1a of the name, mixed with the seed by SplitMix64's finaliser: one stream per column.
 uint64_t column_seed(unsigned long long seed, const std::string& name) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : name) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  uint64_t z = h ^ (seed + 0x9e3779b97f4a7c15ull);
+  uint64_t z = sweep_detail::fnv1a(name) ^ (seed + 0x9e3779b97f4a7c15ull);
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
   return z ^ (z >> 31);

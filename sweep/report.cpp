@@ -12,7 +12,7 @@
 #include "report/format.hpp"
 #include "report/html.hpp"
 #include "report/svg.hpp"
-#include "sweep/sweep.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 
@@ -25,7 +25,7 @@ using fmt::pct;
 using fmt::px;
 using fmt::secs;
 
-const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
+using sweep_detail::row_at;
 double x_of(const SweepPlan& p, const SweepSummary& s, int run) {
   for (size_t k = 0; k < p.keys.size(); ++k)
     if (p.keys[k] == s.x) return p.runs[run].values[k].get<double>();
@@ -395,8 +395,8 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
       if (2 * m.mechanisms.size() <= size_t(m.located) || m.mechanisms.size() <= 12)
         d.table(mechanism_table(m.mechanisms, "hinges at collapse", sens.sampled, m.located));
       else
-        d.paragraph({std::to_string(m.mechanisms.size()) + " different sets of hinges over " + std::to_string(m.located) +
-                     " rows (each row's in sweep.csv's column `hinges`): grouped by members only."});
+        d.paragraph({std::to_string(m.mechanisms.size()) + " different sets of hinges over " + std::to_string(m.located) + " rows (each row's in ",
+                     Cell("sweep.csv", CellStyle::code), "'s column ", Cell("hinges", CellStyle::code), "): grouped by members only."});
       if (m.members.size() < m.mechanisms.size()) d.table(mechanism_table(m.members, "members with hinges", sens.sampled, m.located));
       if (m.members.size() > 1) {
         d.paragraph({"Each member (or pair of members joined by a hinge) alone: the share of the " + std::string(sens.sampled ? "samples" : "runs") +

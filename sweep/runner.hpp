@@ -1,6 +1,8 @@
-// Inside the sweep library: what the local runner (run.cpp) and the MPI runner (mpi.cpp) share.
+// Inside the sweep library: what its files share, the local runner (run.cpp) and the MPI runner
+// (mpi.cpp) above all.
 #pragma once
 
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -9,6 +11,13 @@
 #include "sweep/sweep.hpp"
 
 namespace masonry::sweep_detail {
+
+// The row of run i, or nullptr where the table has none (table.cpp).
+const SweepRow* row_at(const SweepTable& t, int i);
+// Whether an option is the DEM's ("dem.*"): PRD ignores it (spec.cpp).
+bool is_dem_option(const std::string& key);
+// FNV-1a, 64 bits: run ids, the plan's hash, the design's column streams (spec.cpp).
+uint64_t fnv1a(const std::string& s);
 
 // The plan, the rows an earlier invocation finished, and the runs still to do. Preparing rewrites
 // DIR/sweep.csv with those rows only (sorted, without a torn last line), ready for appending.

@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "sweep/sweep.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 
@@ -18,12 +18,11 @@ namespace {
 
 constexpr int kPercentiles[] = {5, 50, 95};
 
-const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
+using sweep_detail::row_at;
 const SweepRow* located_row(const SweepTable& t, int i) {
   const SweepRow* r = row_at(t, i);
   return r && located(*r) ? r : nullptr;
 }
-bool is_dem_key(const std::string& key) { return key.rfind("dem.", 0) == 0; }
 
 // The q-th percentile of sorted values: linear interpolation between the order statistics at
 // (n - 1) q / 100 (Hyndman & Fan's type 7, numpy's default).
@@ -275,7 +274,7 @@ MethodSensitivity method_sensitivity(const SweepPlan& p, const SweepTable& t, co
   for (size_t k = 0; k < p.keys.size(); ++k) {
     ParameterSensitivity ps;
     ps.key = p.keys[k];
-    ps.ignored = method == "prd" && is_dem_key(ps.key);
+    ps.ignored = method == "prd" && sweep_detail::is_dem_option(ps.key);
     if (!ps.ignored) one_at_a_time(p, t, runs, k, ps);
     m.parameters.push_back(std::move(ps));
   }

@@ -13,7 +13,7 @@
 #include "cases/parameters.hpp"
 #include "model/fields.hpp"
 #include "model/io.hpp"
-#include "sweep/sweep.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 
@@ -103,17 +103,6 @@ std::string json_error(const std::string& source, const std::string& what) {
   return source + ": malformed JSON: " + reason;
 }
 
-bool is_dem_option(const std::string& key) { return key.rfind("dem.", 0) == 0; }
-
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : s) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 std::string hex16(uint64_t h) {
   char b[20];
   std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
@@ -185,6 +174,24 @@ SweepSample parse_sample(const SpecReader& r, const ojson& v) {
 }
 
 }  // namespace
+
+namespace sweep_detail {
+
+bool is_dem_option(const std::string& key) { return key.rfind("dem.", 0) == 0; }
+
+uint64_t fnv1a(const std::string& s) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char ch : s) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace sweep_detail
+
+using sweep_detail::fnv1a;
+using sweep_detail::is_dem_option;
 
 std::string value_text(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 

@@ -5,7 +5,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "sweep/sweep.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 
@@ -72,9 +72,12 @@ bool parse_number(const std::string& s, double& x) {
   return end == s.c_str() + s.size() && std::isfinite(x);
 }
 
-const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
-
 }  // namespace
+
+namespace sweep_detail {
+const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
+}  // namespace sweep_detail
+using sweep_detail::row_at;
 
 json row_to_json(const SweepRow& r) {
   json j = {{"run", r.index}, {"id", r.id}, {"method", r.method}, {"stopped", status_name(r.status)},
