@@ -136,14 +136,17 @@ void parse_case_field(const SpecReader& r, const ojson& doc, SweepSpec& s) {
 SweepSample parse_sample(const SpecReader& r, const ojson& v) {
   r.only(v, "sample", {"count", "seed", "ranges", "one_at_a_time", "only"});
   SweepSample s;
+  // A whole number in [lo, hi]; absent: `dflt`, or refused when dflt < 0 (required).
   const auto whole = [&](const char* field, long long lo, long long hi, long long dflt) {
     if (!v.contains(field)) {
       if (dflt < 0) r.fail("sample", std::string("field '") + field + "' is required");
       return dflt;
     }
     const ojson& x = v[field];
-    if (!x.is_number_integer() || x.get<long long>() < lo || (x.is_number_unsigned() ? x.get<unsigned long long>() > static_cast<unsigned long long>(hi) : x.get<long long>() > hi))
-      r.fail("sample", std::string("field '") + field + "' must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
+    // A number beyond long long's range (unsigned, or a float) is out of range too.
+    const bool ok = x.is_number_integer() && !(x.is_number_unsigned() && x.get<unsigned long long>() > 9223372036854775807ull) &&
+                    x.get<long long>() >= lo && x.get<long long>() <= hi;
+    if (!ok) r.fail("sample", std::string("field '") + field + "' must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
     return x.get<long long>();
   };
   s.count = static_cast<int>(whole("count", 1, static_cast<long long>(kMaxRuns), -1));
@@ -473,9 +476,16 @@ SweepPlan plan_sweep(const SweepSpec& spec, const Case& c) {
       const GeneratorParameter& gp = generator_parameter(r, where, p.generator, key);
       if (spec.sample && gp.kind == ParameterKind::flag) r.fail(where, "a switch (true or false) cannot be sampled: vary it");
       whole = gp.kind == ParameterKind::integer;
-      p.base_values.push_back(p.parameters.contains(parameter_of(key)) ? p.parameters[parameter_of(key)] : json(gp.value));
-      if (gp.kind == ParameterKind::integer) p.base_values.back() = static_cast<long long>(p.base_values.back().get<double>());
-      if (gp.kind == ParameterKind::flag && p.base_values.back().is_number()) p.base_values.back() = p.base_values.back().get<double>() != 0;
+      // The base point's value: the call's (checked as the generator checks it), else the default.
+      double x = gp.value;
+      try {
+        if (p.parameters.contains(parameter_of(key))) x = parameter_value(*find_case_generator(p.generator), gp, p.parameters[parameter_of(key)]);
+      } catch (const CaseError& e) {
+        r.fail("case", e.what());
+      }
+      p.base_values.push_back(gp.kind == ParameterKind::integer ? json(static_cast<long long>(x))
+                              : gp.kind == ParameterKind::flag  ? json(x != 0)
+                                                                : json(x));
     } else {
       p.base_values.push_back(option_in(p.base, key));
     }
