@@ -35,11 +35,13 @@ int sweep(const fs::path& spec, const fs::path& out, const std::string& extra, c
   return test::run(kExe + " sweep " + spec.string() + " --out " + out.string() + " " + extra + " 2>" + err.string());
 }
 
+// The example cases/arch-thickness-sweep.json: the arch of kArch over a grid of thicknesses.
 TEST(Sensitivity, ArchCapacityGrowsWithThicknessAndIsZeroBelowMilankovitch) {
   test::Scratch d("arch-grid");
-  const std::vector<double> t = {0.09, 0.1, 0.104, 0.111, 0.12, 0.14, 0.17};
-  test::write(d.path / "s.json", kArch + R"("vary": {"generator.thickness": )" + json(t).dump() + "}}");
-  ASSERT_EQ(sweep(d.path / "s.json", d.path / "out", "", d.path / "err"), 0) << test::read(d.path / "err");
+  const fs::path spec = fs::path(MASONRY_SOURCE_DIR) / "cases" / "arch-thickness-sweep.json";
+  const std::vector<double> t = json::parse(test::read(spec))["vary"]["generator.thickness"];
+  ASSERT_EQ(t.size(), 7u);
+  ASSERT_EQ(sweep(spec, d.path / "out", "", d.path / "err"), 0) << test::read(d.path / "err");
   const json s = read_json(d.path / "out" / "sensitivity.json");
   const json& line = s["methods"]["prd"]["parameters"]["generator.thickness"]["one_at_a_time"];
   ASSERT_EQ(line["values"].size(), t.size()) << line;
