@@ -95,6 +95,10 @@ struct GothicCathedral {
   double lower_flyer_head = 24.0; // intrados of the lower flyer's head on the pier, m
   double lower_flyer_foot = 20.0; // intrados of its foot on the buttress (clears the aisle extrados, 19.6 m)
   double upper_flyer_head = 30.2; // head top at the nave springing, where the nave arch thrusts
+  // Place the upper flyer's head top at the nave springing whatever the springing and the flyer
+  // thickness (upper_flyer_head = nave_springing - flyer_thickness: 30.2 m with the defaults),
+  // for studies that vary either (sweep/README.md).
+  bool upper_flyer_at_springing = false;
   double upper_flyer_foot = 26.0; // on the buttress' second stage
   double buttress_height = 33.0;  // a stage above the upper seat (26.5 m)
   double foundation_height = 1.0; // support blocks, m

@@ -158,10 +158,11 @@ TEST(SweepTable, ReadsBackWhatItWrites) {
   SweepTable t(p.runs.size());
   t[0] = row(p, 0, RunStatus::collapse, 0.45);
   t[0]->required_friction_angle = 26.0;
+  t[0]->hinges = "block/slab:A";
   t[1] = row(p, 1, RunStatus::collapse, 0.3490658503988659);
   t[2] = row(p, 2, RunStatus::error, 0, "dem: bad, \"very\" bad");
   const std::string csv = sweep_csv(p, t);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "run,id,method,dem.friction_angle,capacity,stopped,time_s,diff_prd,required_friction_angle,message");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "run,id,method,dem.friction_angle,capacity,stopped,time_s,diff_prd,required_friction_angle,hinges,message");
   const SweepTable back = read_sweep_csv(p, csv, "sweep.csv");
   ASSERT_EQ(back.size(), 4u);
   for (int i = 0; i < 3; ++i) {
@@ -174,6 +175,7 @@ TEST(SweepTable, ReadsBackWhatItWrites) {
     }
   }
   EXPECT_EQ(back[0]->required_friction_angle, 26.0);
+  EXPECT_EQ(back[0]->hinges, "block/slab:A");
   EXPECT_FALSE(back[3]);
   EXPECT_EQ(sweep_csv(p, back), csv);
   // diff_prd = (cap_dem - cap_prd) / cap_prd, in the DEM row; none for the failed run.
