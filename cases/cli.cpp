@@ -4,6 +4,7 @@
 //   masonry cases import DRAWING.dxf --out FILE [options]
 //   masonry cases show CASE --svg FILE
 #include <deque>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -23,7 +24,9 @@ namespace {
 // bound to a slot whose initial value is the default, so --help shows it.
 struct GeneratorCommand {
   CLI::App* app = nullptr;
-  const CaseGenerator* generator = nullptr;
+  const CaseGenerator* generator = nullptr;  // a parameter-table generator, or
+  std::string name, summary;                 // one with options of its own (the wall's openings, bond, ...)
+  std::function<Case()> make;
   struct Slot {
     double number = 0;
     int integer = 0;
@@ -68,6 +71,8 @@ void add_case_commands(CLI::App& app, Commands& out) {
   for (const CaseGenerator& g : case_generators()) {
     GeneratorCommand& gc = gens->emplace_back();
     gc.generator = &g;
+    gc.name = g.name;
+    gc.summary = g.summary;
     gc.app = cmd->add_subcommand(g.name, g.summary);
     gc.app->add_option("--out,-o", *file, "Case file to write ('-': standard output)")->required();
     for (const GeneratorParameter& p : g.parameters) {
@@ -96,7 +101,7 @@ void add_case_commands(CLI::App& app, Commands& out) {
     CLI::App* g = cmd->add_subcommand(
         "wall", "Brick wall in running, stack or header bond, with openings under lintels or arches, on two ground blocks; "
                 "one settles or turns (cases/README.md, 'Brick wall')");
-    add_out(g);
+    g->add_option("--out,-o", *file, "Case file to write ('-': standard output)")->required();
     g->add_option("--bond", p->bond, "running, stack or header")
         ->transform(CLI::CheckedTransformer(
             std::map<std::string, WallBond>{{"running", WallBond::running}, {"stack", WallBond::stack}, {"header", WallBond::header}}))
@@ -128,11 +133,15 @@ void add_case_commands(CLI::App& app, Commands& out) {
         ->capture_default_str();
     g->add_option("--step", p->step, "Path parameter d per step, m")->capture_default_str();
     g->add_option("--max-steps", p->max_steps, "Largest number of steps")->capture_default_str();
-    gens->push_back({g, "brick wall (generator)", [=] {
-                       BrickWall q = *p;
-                       for (const std::string& o : *openings) q.openings.push_back(parse_wall_opening(o));
-                       return brick_wall(q);
-                     }});
+    GeneratorCommand& gc = gens->emplace_back();
+    gc.app = g;
+    gc.name = "wall";
+    gc.summary = g->get_description();
+    gc.make = [p, openings] {
+      BrickWall q = *p;
+      for (const std::string& o : *openings) q.openings.push_back(parse_wall_opening(o));
+      return brick_wall(q);
+    };
   }
 
   // Import a drawing.
@@ -176,14 +185,14 @@ void add_case_commands(CLI::App& app, Commands& out) {
                    }
                    if (*list) {
                      std::cout << "generators and standard scenes (masonry cases NAME --out FILE; NAME --help):\n";
-                     for (const GeneratorCommand& g : *gens) std::cout << "  " << g.generator->name << "\n      " << g.generator->summary << "\n";
+                     for (const GeneratorCommand& g : *gens) std::cout << "  " << g.name << "\n      " << g.summary << "\n";
                      std::cout << "standard scenes checked in under cases/:\n";
                      for (const StandardCase& s : standard_cases())
                        std::cout << "  " << s.name << ".json: " << s.summary << "\n";
                      return 0;
                    }
                    for (const GeneratorCommand& g : *gens)
-                     if (g.app->parsed()) return emit(g.generator->make(g.values()), *file);
+                     if (g.app->parsed()) return emit(g.make ? g.make() : g.generator->make(g.values()), *file);
                    std::cerr << "masonry cases: name a generator or give --list (see masonry cases --help)\n";
                    return 2;
                  }});
