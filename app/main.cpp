@@ -4,6 +4,7 @@
 #include "model/case.hpp"
 #include "model/version.hpp"
 #include "app/command.hpp"
+#include "app/suggest.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"masonry: PRD limit analysis and rigid-block DEM of masonry structures, side by side"};
@@ -36,7 +37,14 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // CLI11 prints the message (or the help, exit 0); a usage error is a refusal like any other
-    // bad input (command.hpp), not CLI11's own codes (105-109).
+    // bad input (command.hpp), not CLI11's own codes (105-109). A subcommand or option that does
+    // not exist is named with the nearest one that does.
+    if (e.get_exit_code() != 0) {
+      if (const auto hint = masonry::unknown_name_hint(app, std::vector<std::string>(argv + 1, argv + argc))) {
+        std::cerr << masonry::printable(*hint, 2000) << "\n";
+        return masonry::kExitRefused;
+      }
+    }
     return app.exit(e) == 0 ? masonry::kExitDone : masonry::kExitRefused;
   }
   for (const masonry::Command& c : commands) {

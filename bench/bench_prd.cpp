@@ -1,10 +1,16 @@
-// PRD speed, measured as benchmarks (never as timed tests). Run:
-//   ./build/bench/masonry_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// and quote the medians; these machines are shared and noisy.
+// PRD speed, measured as benchmarks (never as timed tests). Run (PRD only, without the
+// 10,000-block wall, which takes minutes):
+//   taskset -c 0 ./build/bench/masonry_bench --benchmark_filter='-dem|prd_wall/100' --benchmark_repetitions=3
+//       --benchmark_report_aggregates_only=true
+// and quote the medians; these machines are shared and noisy. `total_s` is the run's own
+// timing.total_s (its thread CPU time), `lp_s` its time in GLPK, `first_lp_s` that of its first
+// LP. The walls (prd_wall/N: N courses of N bricks in running bond, the right half of the ground
+// settling 1 mm a step, 20 steps; 497, 2,049 and 10,052 blocks) are one run per repetition.
 #include <benchmark/benchmark.h>
 
 #include <string>
 
+#include "cases/generators.hpp"
 #include "model/case.hpp"
 #include "prd/prd.hpp"
 
@@ -12,6 +18,14 @@ namespace {
 
 masonry::Case standard(const std::string& name) {
   return masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json");
+}
+
+void count_run(benchmark::State& state, const masonry::RunResult& r, double first_lp_s) {
+  state.counters["capacity_m"] = r.capacity;
+  state.counters["lp_solves"] = static_cast<double>(r.timing.lp_solves);
+  state.counters["total_s"] = r.timing.total_s;
+  state.counters["lp_s"] = r.timing.lp_s;
+  state.counters["first_lp_s"] = first_lp_s;
 }
 
 void capacity_run(benchmark::State& state, const std::string& name, bool adaptive) {
@@ -22,13 +36,31 @@ void capacity_run(benchmark::State& state, const std::string& name, bool adaptiv
   for (auto _ : state) {
     const masonry::RunResult r = masonry::prd_run(c, s);
     benchmark::DoNotOptimize(r.capacity);
-    state.counters["capacity_m"] = r.capacity;
-    state.counters["lp_solves"] = static_cast<double>(r.timing.lp_solves);
+    count_run(state, r, -1);
     state.counters["basis_evals"] = static_cast<double>(r.timing.basis_evaluations);
     lp_share = r.timing.lp_s / r.timing.total_s;
   }
   state.counters["glpk_share"] = lp_share;
 }
+
+// A running-bond wall of n courses of n bricks (cases/README.md, "Brick wall"), 20 steps of 1 mm.
+void prd_wall(benchmark::State& state) {
+  masonry::BrickWall p;
+  p.courses = p.bricks = static_cast<int>(state.range(0));
+  p.max_steps = 20;
+  const masonry::Case c = masonry::brick_wall(p);
+  const masonry::PrdSettings s = masonry::PrdSettings::from_case(c);
+  for (auto _ : state) {
+    double first_lp_s = -1;
+    const masonry::RunResult r = masonry::prd_run(c, s, [&](const masonry::RunResult& at) {
+      if (first_lp_s < 0) first_lp_s = at.timing.lp_s;
+    });
+    benchmark::DoNotOptimize(r.capacity);
+    count_run(state, r, first_lp_s);
+  }
+  state.counters["blocks"] = static_cast<double>(c.blocks.size());
+}
+BENCHMARK(prd_wall)->Arg(22)->Arg(45)->Arg(100)->Iterations(1)->Unit(benchmark::kSecond);
 
 void single_analysis(benchmark::State& state, const std::string& name) {
   const masonry::Case c = standard(name);

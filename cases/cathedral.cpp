@@ -148,7 +148,7 @@ Case gothic_cathedral(const GothicCathedral& p) {
   need(p.moving_support >= 1 && p.moving_support <= 4, "moving_support must be 1..4");
   need(p.step > 0 && p.max_steps >= 0, "step must be positive");
   const double ya = p.aisle_springing, yn = p.nave_springing, ta = p.aisle_thickness, tf = p.flyer_thickness;
-  const double lh = p.lower_flyer_head, uh = p.upper_flyer_head;
+  const double lh = p.lower_flyer_head, uh = p.upper_flyer_at_springing ? yn - tf : p.upper_flyer_head;
   need(0 < ya && ya < p.aisle_height && ya < lh, "need 0 < aisle springing < aisle height and < lower flyer head");
   need(lh + tf < uh, "the upper flyer's head must lie above the lower one's");
   need(uh + tf <= yn + 1e-9, "the upper flyer's head must lie below the nave springing");

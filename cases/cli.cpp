@@ -3,13 +3,16 @@
 //   masonry cases NAME --out FILE [parameters]   (NAME --help lists the parameters)
 //   masonry cases import DRAWING.dxf --out FILE [options]
 //   masonry cases show CASE --svg FILE
-#include <cmath>
+#include <deque>
+#include <functional>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include "app/command.hpp"
 #include "cases/dxf.hpp"
 #include "cases/generators.hpp"
+#include "cases/parameters.hpp"
 #include "cases/show.hpp"
 #include "model/results.hpp"
 
@@ -17,12 +20,30 @@ namespace masonry {
 
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
-struct Generator {
+// A generator on the command line: one option per parameter of its table (parameters.hpp),
+// bound to a slot whose initial value is the default, so --help shows it.
+struct GeneratorCommand {
   CLI::App* app = nullptr;
-  std::string summary;
+  const CaseGenerator* generator = nullptr;  // a parameter-table generator, or
+  std::string name, summary;                 // one with options of its own (the wall's openings, bond, ...)
   std::function<Case()> make;
+  struct Slot {
+    double number = 0;
+    int integer = 0;
+    bool flag = false;
+  };
+  std::deque<Slot> slots;  // a deque: CLI11 keeps pointers to the values
+  std::vector<double> values() const {
+    std::vector<double> v;
+    for (size_t k = 0; k < slots.size(); ++k) {
+      switch (generator->parameters[k].kind) {
+        case ParameterKind::number: v.push_back(slots[k].number); break;
+        case ParameterKind::integer: v.push_back(slots[k].integer); break;
+        case ParameterKind::flag: v.push_back(slots[k].flag ? 1.0 : 0.0); break;
+      }
+    }
+    return v;
+  }
 };
 
 // Writes the case (or prints it for "-") after checking that it reads back as a valid case.
@@ -46,118 +67,82 @@ void add_case_commands(CLI::App& app, Commands& out) {
   auto list = std::make_shared<bool>(false);
   auto file = std::make_shared<std::string>();
   cmd->add_flag("--list", *list, "List the generators and standard scenes");
-  auto gens = std::make_shared<std::vector<Generator>>();
-  auto add_out = [&](CLI::App* g) { g->add_option("--out,-o", *file, "Case file to write ('-': standard output)")->required(); };
+  auto gens = std::make_shared<std::deque<GeneratorCommand>>();
+  for (const CaseGenerator& g : case_generators()) {
+    GeneratorCommand& gc = gens->emplace_back();
+    gc.generator = &g;
+    gc.name = g.name;
+    gc.summary = g.summary;
+    gc.app = cmd->add_subcommand(g.name, g.summary);
+    gc.app->add_option("--out,-o", *file, "Case file to write ('-': standard output)")->required();
+    for (const GeneratorParameter& p : g.parameters) {
+      GeneratorCommand::Slot& slot = gc.slots.emplace_back();
+      const std::string flag = "--" + p.name;
+      switch (p.kind) {
+        case ParameterKind::number:
+          slot.number = p.value;
+          gc.app->add_option(flag, slot.number, p.help)->capture_default_str();
+          break;
+        case ParameterKind::integer:
+          slot.integer = static_cast<int>(p.value);
+          gc.app->add_option(flag, slot.integer, p.help)->capture_default_str();
+          break;
+        case ParameterKind::flag:
+          slot.flag = p.value != 0;
+          gc.app->add_flag(flag, slot.flag, p.help);
+          break;
+      }
+    }
+  }
 
   {
-    auto p = std::make_shared<CircularArch>();
-    auto deg = std::make_shared<double>(p->embrace / kDeg);
-    auto fixed = std::make_shared<bool>(false);
-    CLI::App* g = cmd->add_subcommand("circular-arch", "Circular arch, radial joints, on two supports; right support spreading");
-    add_out(g);
-    g->add_option("--radius", p->radius, "Centreline radius R, m")->capture_default_str();
-    g->add_option("--thickness", p->thickness, "Thickness t, m")->capture_default_str();
-    g->add_option("--embrace-deg", *deg, "Angle of embrace, degrees")->capture_default_str();
-    g->add_option("--voussoirs", p->voussoirs, "Number of voussoirs")->capture_default_str();
-    g->add_option("--depth", p->depth, "Out-of-plane depth, m")->capture_default_str();
-    g->add_option("--density", p->density, "Density, kg/m3")->capture_default_str();
-    g->add_option("--step", p->step, "Support displacement per step, m")->capture_default_str();
-    g->add_option("--max-steps", p->max_steps, "Largest number of steps")->capture_default_str();
-    g->add_flag("--fixed", *fixed, "No support motion");
-    gens->push_back({g, "circular arch (generator)", [=] {
-                       CircularArch q = *p;
-                       q.embrace = *deg * kDeg;
-                       q.spreading = !*fixed;
-                       return circular_arch(q);
-                     }});
-  }
-  {
-    auto p = std::make_shared<PointedArch>(standard_pointed_arch());
-    auto deg = std::make_shared<double>(150.0);
-    auto fixed = std::make_shared<bool>(false);
+    auto p = std::make_shared<BrickWall>();
+    auto openings = std::make_shared<std::vector<std::string>>();
     CLI::App* g = cmd->add_subcommand(
-        "pointed-arch",
-        "Two-centred pointed arch (Romano & Ochsendorf parameters) on two supports; right support spreading. "
-        "With the default parameters: the standard scene cases/pointed-arch.json");
-    add_out(g);
-    g->add_option("--rcirc", p->rcirc, "Centreline radius of the equivalent circular arch Rcirc, m")->capture_default_str();
-    g->add_option("--eccentricity", p->eccentricity, "Eccentricity e of the two centres from the axis, m (Rpoint = Rcirc + e)")
+        "wall", "Brick wall in running, stack or header bond, with openings under lintels or arches, on two ground blocks; "
+                "one settles or turns (cases/README.md, 'Brick wall')");
+    g->add_option("--out,-o", *file, "Case file to write ('-': standard output)")->required();
+    g->add_option("--bond", p->bond, "running, stack or header")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, WallBond>{{"running", WallBond::running}, {"stack", WallBond::stack}, {"header", WallBond::header}}))
+        ->default_str("running");
+    g->add_option("--courses", p->courses, "Number of courses")->capture_default_str();
+    g->add_option("--bricks", p->bricks, "Units per course: stretchers, or headers in header bond")->capture_default_str();
+    g->add_option("--brick-length", p->brick_length, "Stretcher length, m")->capture_default_str();
+    g->add_option("--header-length", p->header_length, "Header face length (the brick's width), m; header bond")
         ->capture_default_str();
-    g->add_option("--thickness", p->thickness, "Thickness t, m")->capture_default_str();
-    g->add_option("--embrace-deg", *deg, "Angle of embrace (between the springing joints), degrees")->capture_default_str();
-    g->add_option("--voussoirs", p->voussoirs, "Number of voussoirs (even: crown joint on the axis; odd: keystone)")
-        ->capture_default_str();
-    g->add_option("--depth", p->depth, "Out-of-plane depth, m")->capture_default_str();
+    g->add_option("--course-height", p->course_height, "Course height, m")->capture_default_str();
+    g->add_option("--depth", p->depth, "Out-of-plane thickness of the wall, m")->capture_default_str();
     g->add_option("--density", p->density, "Density, kg/m3")->capture_default_str();
-    g->add_option("--step", p->step, "Support displacement per step, m")->capture_default_str();
-    g->add_option("--max-steps", p->max_steps, "Largest number of steps")->capture_default_str();
-    g->add_flag("--fixed", *fixed, "No support motion");
-    gens->push_back({g, "pointed arch (generator; defaults: the standard scene)", [=] {
-                       PointedArch q = *p;
-                       q.embrace = *deg * kDeg;
-                       q.spreading = !*fixed;
-                       // The defaults are the standard scene: keep its name and description.
-                       Case c = pointed_arch(q);
-                       if (case_to_json(c) == case_to_json(pointed_arch(standard_pointed_arch())))
-                         return standard_case("pointed-arch");
-                       return c;
-                     }});
-  }
-  auto cathedral = [&](const std::string& name, const std::string& help, GothicCathedral defaults,
-                       const std::string& standard) {
-    auto p = std::make_shared<GothicCathedral>(defaults);
-    CLI::App* g = cmd->add_subcommand(name, help);
-    add_out(g);
-    g->add_option("--nave-height", p->nave_height, "Intrados crown of the nave arch, m")->capture_default_str();
-    g->add_option("--aisle-height", p->aisle_height, "Intrados crown of the aisle arches, m")->capture_default_str();
-    g->add_option("--bay", p->bay, "Bay: out-of-plane depth of the arches (vaults), m")->capture_default_str();
-    g->add_option("--nave-span", p->nave_span, "Clear span of the nave between the piers, m")->capture_default_str();
-    g->add_option("--pier-width", p->pier_width, "Width of the nave pier shaft, m")->capture_default_str();
-    g->add_option("--aisle-span", p->aisle_span, "Clear span of the aisle arch, m")->capture_default_str();
-    g->add_option("--buttress-width", p->buttress_width, "Width of the outer buttress above the aisle springing, m")
+    g->add_option("--opening", *openings,
+                  "An opening X,SILL,WIDTH,HEIGHT[,lintel|arch] (m from the wall's left end and base; sill and top move to the "
+                  "nearest course joint; default top: lintel); repeatable");
+    g->add_option("--lintel-bearing", p->lintel_bearing, "A lintel's bearing on each side of its opening, m")->capture_default_str();
+    g->add_option("--arch-thickness", p->arch_thickness, "Thickness of an arch's ring, m")->capture_default_str();
+    g->add_option("--arch-voussoirs", p->arch_voussoirs, "Voussoirs of each arch (0: about one per course height)")
         ->capture_default_str();
-    g->add_option("--nave-springing", p->nave_springing, "Height of the nave arch's springing (pier top), m")->capture_default_str();
-    g->add_option("--aisle-springing", p->aisle_springing, "Height of the aisle arch's springing, m")->capture_default_str();
-    g->add_option("--nave-thickness", p->nave_thickness, "Nave arch thickness, m")->capture_default_str();
-    g->add_option("--aisle-thickness", p->aisle_thickness, "Aisle arch thickness, m")->capture_default_str();
-    g->add_option("--flyer-thickness", p->flyer_thickness, "Flying buttress thickness, m")->capture_default_str();
-    g->add_option("--lower-flyer-head", p->lower_flyer_head, "Lower flyer: intrados height at the pier, m")->capture_default_str();
-    g->add_option("--lower-flyer-foot", p->lower_flyer_foot, "Lower flyer: intrados height at the buttress, m")->capture_default_str();
-    g->add_option("--upper-flyer-head", p->upper_flyer_head, "Upper flyer: intrados height at the pier, m")->capture_default_str();
-    g->add_option("--upper-flyer-foot", p->upper_flyer_foot, "Upper flyer: intrados height at the buttress, m")->capture_default_str();
-    g->add_option("--buttress-height", p->buttress_height, "Height of the outer buttress, m")->capture_default_str();
-    g->add_option("--foundation-height", p->foundation_height, "Height of the support blocks, m")->capture_default_str();
-    g->add_option("--pier-depth", p->pier_depth, "Out-of-plane depth of the piers, m")->capture_default_str();
-    g->add_option("--buttress-depth", p->buttress_depth, "Out-of-plane depth of the buttresses, m")->capture_default_str();
-    g->add_option("--flyer-depth", p->flyer_depth, "Out-of-plane depth of the flying buttresses, m")->capture_default_str();
-    g->add_option("--density", p->density, "Density, kg/m3")->capture_default_str();
-    g->add_option("--course", p->course, "Target course height of piers and buttresses, m")->capture_default_str();
-    g->add_option("--nave-voussoirs", p->nave_voussoirs, "Voussoirs of the nave arch (even)")->capture_default_str();
-    g->add_option("--aisle-voussoirs", p->aisle_voussoirs, "Voussoirs of each aisle arch (even)")->capture_default_str();
-    g->add_option("--flyer-voussoirs", p->flyer_voussoirs, "Voussoirs of each flying buttress")->capture_default_str();
-    g->add_option("--moving-support", p->moving_support, "Support that moves, 1..4 from the left (3: third pier)")
-        ->capture_default_str();
-    g->add_option("--settlement-step", p->settlement_step, "Settlement of that support per step, m (down)")
-        ->capture_default_str();
-    g->add_option("--rotation-step", p->rotation_step, "Counter-clockwise rotation per step about its centroid, rad")
+    g->add_option("--ground-height", p->ground_height, "Height of the two ground blocks, m")->capture_default_str();
+    g->add_option("--ground-split", p->ground_split, "Where the ground splits, m from the wall's left end (default: the middle)");
+    g->add_option("--moving", p->moving, "Which ground block moves: left, right or none")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, MovingGround>{
+            {"none", MovingGround::none}, {"left", MovingGround::left}, {"right", MovingGround::right}}))
+        ->default_str("right");
+    g->add_option("--settlement-step", p->settlement_step, "Settlement of the moving ground per step, m (down)")->capture_default_str();
+    g->add_option("--rotation-step", p->rotation_step,
+                  "Counter-clockwise rotation of the moving ground per step, rad, about the split's top point")
         ->capture_default_str();
     g->add_option("--step", p->step, "Path parameter d per step, m")->capture_default_str();
     g->add_option("--max-steps", p->max_steps, "Largest number of steps")->capture_default_str();
-    gens->push_back({g, help, [=] {
-                       Case c = gothic_cathedral(*p);
-                       // Unchanged defaults of a standard scene: the standard file, name and description included.
-                       if (!standard.empty() && case_to_json(c) == case_to_json(gothic_cathedral(defaults)))
-                         return standard_case(standard);
-                       return c;
-                     }});
-  };
-  cathedral("cathedral", "Gothic cathedral cross-section after the paper (Amiens); no motion unless asked", GothicCathedral{},
-            "");
-  cathedral("cathedral-settlement", "Standard scene: the cathedral, third pier settling 1 cm per step",
-            standard_cathedral_settlement(), "cathedral-settlement");
-  cathedral("cathedral-settlement-rotation",
-            "Standard scene: the cathedral, third pier settling 1 cm and turning 0.001 rad per step",
-            standard_cathedral_settlement_rotation(), "cathedral-settlement-rotation");
+    GeneratorCommand& gc = gens->emplace_back();
+    gc.app = g;
+    gc.name = "wall";
+    gc.summary = g->get_description();
+    gc.make = [p, openings] {
+      BrickWall q = *p;
+      for (const std::string& o : *openings) q.openings.push_back(parse_wall_opening(o));
+      return brick_wall(q);
+    };
+  }
 
   // Import a drawing.
   auto imp = std::make_shared<DxfImportOptions>();
@@ -200,14 +185,14 @@ void add_case_commands(CLI::App& app, Commands& out) {
                    }
                    if (*list) {
                      std::cout << "generators and standard scenes (masonry cases NAME --out FILE; NAME --help):\n";
-                     for (const Generator& g : *gens) std::cout << "  " << g.app->get_name() << "\n      " << g.summary << "\n";
+                     for (const GeneratorCommand& g : *gens) std::cout << "  " << g.name << "\n      " << g.summary << "\n";
                      std::cout << "standard scenes checked in under cases/:\n";
                      for (const StandardCase& s : standard_cases())
                        std::cout << "  " << s.name << ".json: " << s.summary << "\n";
                      return 0;
                    }
-                   for (const Generator& g : *gens)
-                     if (g.app->parsed()) return emit(g.make(), *file);
+                   for (const GeneratorCommand& g : *gens)
+                     if (g.app->parsed()) return emit(g.make ? g.make() : g.generator->make(g.values()), *file);
                    std::cerr << "masonry cases: name a generator or give --list (see masonry cases --help)\n";
                    return 2;
                  }});

@@ -1,10 +1,7 @@
-// import_dxf, as named stages: read the drawing (dxflib), turn polylines into polygons in metres
+// import_dxf, as named stages: read the drawing (cases/dxf_reader.hpp), turn polylines into polygons in metres
 // (units, arcs by chords), name the blocks and give them their layer's properties, snap drafting
 // gaps, assemble the case (with the merged fragment) and check it with the case loader.
 #include "cases/dxf.hpp"
-
-#include <dxflib/dl_creationadapter.h>
-#include <dxflib/dl_dxf.h>
 
 #include <algorithm>
 #include <cctype>
@@ -18,41 +15,17 @@
 #include <optional>
 #include <sstream>
 
+#include "cases/dxf_reader.hpp"
+#include "model/fields.hpp"
 #include "model/interfaces.hpp"
+#include "model/io.hpp"
+#include "report/format.hpp"
 
 namespace masonry {
 
 namespace {
 
 using json = nlohmann::json;
-
-// What the drawing holds, as read.
-struct RawVertex {
-  double x = 0, y = 0, bulge = 0;
-};
-struct RawPolyline {
-  std::string layer, handle;
-  bool closed = false, mesh = false;
-  std::vector<RawVertex> v;
-};
-struct RawText {
-  std::string layer, handle, text;
-  double x = 0, y = 0;
-};
-struct RawDrawing {
-  int insunits = -1;  // $INSUNITS, -1: absent
-  std::vector<RawPolyline> polylines;
-  std::vector<RawText> texts;
-  std::vector<std::string> refused;  // entities that cannot be blocks: "CIRCLE on layer L (handle H)"
-  int ignored_lines = 0;
-};
-
-std::string hex_handle(int h) {
-  if (h < 0) return "?";
-  char b[24];
-  std::snprintf(b, sizeof b, "%X", h);
-  return b;
-}
 
 bool layer_is(const std::string& layer, const char* prefix) {
   const size_t n = std::strlen(prefix);
@@ -62,76 +35,6 @@ bool layer_is(const std::string& layer, const char* prefix) {
   return true;
 }
 bool ignored_layer(const std::string& layer) { return layer_is(layer, "ignore") || layer_is(layer, "defpoints"); }
-
-// Stage 1: dxflib's callbacks into RawDrawing. A polyline's vertices arrive after it (LWPOLYLINE
-// at once, POLYLINE as VERTEX entities up to SEQEND); the next entity closes it.
-struct Reader : DL_CreationAdapter {
-  RawDrawing d;
-  bool open = false;
-  void close() { open = false; }
-  std::string where() { return "layer '" + printable(attributes.getLayer()) + "' (handle " + hex_handle(attributes.getHandle()) + ")"; }
-  void addPolyline(const DL_PolylineData& p) override {
-    close();
-    RawPolyline r;
-    r.layer = attributes.getLayer();
-    r.handle = hex_handle(attributes.getHandle());
-    r.closed = (p.flags & 1) != 0;
-    r.mesh = (p.flags & (16 | 64)) != 0;
-    d.polylines.push_back(r);
-    open = true;
-  }
-  void addVertex(const DL_VertexData& v) override {
-    if (open) d.polylines.back().v.push_back({v.x, v.y, v.bulge});
-  }
-  void endSequence() override { close(); }
-  void addText(const DL_TextData& t) override {
-    close();
-    d.texts.push_back({attributes.getLayer(), hex_handle(attributes.getHandle()), t.text, t.ipx, t.ipy});
-  }
-  void addMText(const DL_MTextData& t) override {
-    close();
-    d.texts.push_back({attributes.getLayer(), hex_handle(attributes.getHandle()), t.text, t.ipx, t.ipy});
-  }
-  void refuse(const char* kind) {
-    close();
-    if (!ignored_layer(attributes.getLayer())) d.refused.push_back(std::string(kind) + " on " + where());
-  }
-  void addCircle(const DL_CircleData&) override { refuse("CIRCLE"); }
-  void addArc(const DL_ArcData&) override { refuse("ARC"); }
-  void addEllipse(const DL_EllipseData&) override { refuse("ELLIPSE"); }
-  void addSpline(const DL_SplineData&) override { refuse("SPLINE"); }
-  void addInsert(const DL_InsertData&) override { refuse("INSERT (a block reference: explode it in the drawing)"); }
-  void addLine(const DL_LineData&) override {
-    close();
-    if (!ignored_layer(attributes.getLayer())) ++d.ignored_lines;
-  }
-  void setVariableInt(const std::string& key, int value, int) override {
-    if (key == "$INSUNITS") d.insunits = value;
-  }
-};
-
-RawDrawing read_drawing(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaseError(path + ": cannot open the drawing");
-  std::string head(64, '\0');
-  in.read(head.data(), 64);
-  head.resize(static_cast<size_t>(in.gcount()));
-  if (head.empty()) throw CaseError(path + ": the drawing is empty");
-  if (head.rfind("AutoCAD Binary DXF", 0) == 0) throw CaseError(path + ": a binary DXF: save the drawing as ASCII DXF");
-  for (char ch : head)
-    if (ch == '\0' || (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\r' && ch != '\t'))
-      throw CaseError(path + ": not a DXF drawing (binary content in its first bytes)");
-  Reader r;
-  DL_Dxf dxf;
-  try {
-    if (!dxf.in(path, &r)) throw CaseError(path + ": cannot read the drawing");
-  } catch (const CaseError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw CaseError(path + ": not a readable DXF drawing (" + printable(e.what()) + ")");
-  }
-  return r.d;
-}
 
 // Stage 2: metres per drawing unit.
 double unit_scale(const std::string& path, const std::string& option, int insunits) {
@@ -153,27 +56,40 @@ double unit_scale(const std::string& path, const std::string& option, int insuni
   }
 }
 
+// Beyond these a drawing is a drafting error, not masonry: an arc of more chords, or more
+// vertices in all, than any structure needs (each costs memory and time in every check).
+constexpr double kMaxChordsPerArc = 1e5;
+constexpr size_t kMaxVertices = 10'000'000;
+
 // An edge from p to q with DXF bulge b (tan of a quarter of the included angle, positive
 // counter-clockwise), replaced by chords no farther than `tol` from the arc; p included, q not.
-void append_arc(std::vector<Vec2>& out, const Vec2& p, const Vec2& q, double bulge, double tol) {
-  out.push_back(p);
-  if (std::abs(bulge) < 1e-12) return;
-  const double theta = 4 * std::atan(bulge);  // included angle, signed
+// False, with nothing appended, where that takes more than kMaxChordsPerArc chords.
+bool append_arc(std::vector<Vec2>& out, const Vec2& p, const Vec2& q, double bulge, double tol) {
   const double chord = (q - p).norm();
+  // The arc's height over its chord is |bulge| x half the chord: within the tolerance, one chord.
+  if (!(std::abs(bulge) * chord / 2 > tol)) {
+    out.push_back(p);
+    return true;
+  }
+  const double theta = 4 * std::atan(bulge);  // included angle, signed
   const double r = chord / (2 * std::sin(std::abs(theta) / 2));
+  // Chords of angle a keep within r (1 - cos(a/2)) = 2 r sin^2(a/4) of the arc.
+  const double a_max = 4 * std::asin(std::min(1.0, std::sqrt(tol / (2 * r))));
+  const double chords = std::ceil(std::abs(theta) / a_max);
+  if (!(chords <= kMaxChordsPerArc)) return false;
   const Vec2 mid = 0.5 * (p + q), dir = (q - p) / chord;
   const Vec2 left(-dir.y(), dir.x());
-  // The centre lies to the left of p->q for a counter-clockwise arc shorter than a half circle.
-  const double off = r * std::cos(std::abs(theta) / 2);
-  const Vec2 centre = mid + (theta > 0 ? 1.0 : -1.0) * (std::abs(theta) < M_PI ? 1.0 : -1.0) * off * left;
-  // Chords of angle a keep within r (1 - cos(a/2)) of the arc.
-  const double a_max = tol < r ? 2 * std::acos(1 - tol / r) : M_PI / 2;
-  const int n = std::max(1, static_cast<int>(std::ceil(std::abs(theta) / a_max)));
+  // The centre lies r cos(theta/2) to the left of p->q for a counter-clockwise arc (to the right
+  // beyond a half circle, where the cosine turns negative), mirrored for a clockwise one.
+  const Vec2 centre = mid + (theta > 0 ? 1.0 : -1.0) * r * std::cos(std::abs(theta) / 2) * left;
+  const int n = std::max(1, static_cast<int>(chords));
   const double a0 = std::atan2(p.y() - centre.y(), p.x() - centre.x());
+  out.push_back(p);
   for (int k = 1; k < n; ++k) {
     const double a = a0 + theta * k / n;
     out.push_back(centre + r * Vec2(std::cos(a), std::sin(a)));
   }
+  return true;
 }
 
 // One block as imported, with where it came from.
@@ -182,6 +98,66 @@ struct Piece {
   bool support = false;
   double density = 0, depth = 1;
   std::vector<Vec2> v;
+  Bounds box;
+};
+
+// The pieces by the cells of a uniform grid their boxes, grown by `pad`, overlap: the pieces
+// near a point without a pass over all of them (a drawing of 10,000 polylines: naming, snapping
+// and the near joints would otherwise be quadratic in the blocks).
+class PieceGrid {
+ public:
+  PieceGrid(const std::vector<Piece>& ps, double pad) {
+    Bounds all;
+    double sizes = 0;
+    for (const Piece& k : ps) {
+      all.add(k.box.lo);
+      all.add(k.box.hi);
+      sizes += k.box.size();
+    }
+    lo_ = all.lo - Vec2(pad, pad);
+    const Vec2 ext = all.extent() + Vec2(2 * pad, 2 * pad);
+    // About one cell per piece, and no smaller than a typical piece.
+    const double n = static_cast<double>(std::max<size_t>(ps.size(), 1));
+    h_ = std::max({std::sqrt(ext.x() * ext.y() / n), sizes / n + 2 * pad, 1e-9 * (ext.maxCoeff() + 1)});
+    nx_ = cells(ext.x()), ny_ = cells(ext.y());
+    cell_.resize(static_cast<size_t>(nx_) * ny_);
+    for (size_t i = 0; i < ps.size(); ++i) {
+      const auto [x0, y0] = at(ps[i].box.lo - Vec2(pad, pad));
+      const auto [x1, y1] = at(ps[i].box.hi + Vec2(pad, pad));
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) cell_[static_cast<size_t>(y) * nx_ + x].push_back(static_cast<int>(i));
+    }
+  }
+  // The pieces whose grown boxes may hold p, in drawing order.
+  const std::vector<int>& near(const Vec2& p) const {
+    const auto [x, y] = at(p);
+    return cell_[static_cast<size_t>(y) * nx_ + x];
+  }
+  // The pieces whose grown boxes may meet box b, in drawing order.
+  std::vector<int> near(const Bounds& b) const {
+    const auto [x0, y0] = at(b.lo);
+    const auto [x1, y1] = at(b.hi);
+    std::vector<int> out;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const std::vector<int>& c = cell_[static_cast<size_t>(y) * nx_ + x];
+        out.insert(out.end(), c.begin(), c.end());
+      }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+ private:
+  int cells(double e) const { return static_cast<int>(std::clamp(std::floor(e / h_) + 1, 1.0, 4096.0)); }
+  std::pair<int, int> at(const Vec2& p) const {
+    const auto c = [&](double v, int n) { return static_cast<int>(std::clamp(std::floor(v / h_), 0.0, n - 1.0)); };
+    return {c(p.x() - lo_.x(), nx_), c(p.y() - lo_.y(), ny_)};
+  }
+  double h_ = 1;
+  Vec2 lo_;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::vector<int>> cell_;
 };
 
 struct LayerProps {
@@ -190,13 +166,9 @@ struct LayerProps {
 };
 
 json read_json(const std::string& file, const char* what) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw CaseError(file + ": cannot open " + what);
-  try {
-    return json::parse(in);
-  } catch (const json::exception& e) {
-    throw CaseError(file + ": malformed JSON: " + printable(e.what()));
-  }
+  const std::optional<std::string> text = read_text(file);
+  if (!text) throw CaseError(file + ": cannot open " + what);
+  return parse_document<CaseError>(*text, file);
 }
 
 std::map<std::string, LayerProps> read_layers(const std::string& file) {
@@ -221,30 +193,48 @@ std::map<std::string, LayerProps> read_layers(const std::string& file) {
 }
 
 // Stage 3: polygons with their ids and properties.
-std::vector<Piece> blocks_of(const std::string& path, const RawDrawing& d, double scale, const DxfImportOptions& o) {
-  if (!d.refused.empty())
-    throw CaseError(path + ": " + d.refused.front() + " cannot be a block: draw blocks as closed polylines (or put it on a layer named IGNORE)");
+std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, double scale, const DxfImportOptions& o) {
+  for (const DxfEntity& e : d.curves)
+    if (!ignored_layer(e.layer))
+      throw CaseError(path + ": " + printable(e.type) + (e.type == "INSERT" ? " (a block reference: explode it in the drawing)" : "") +
+                      " on layer '" + printable(e.layer) + "' (handle " + printable(e.handle) +
+                      ") cannot be a block: draw blocks as closed polylines (or put it on a layer named IGNORE)");
   const auto layers = read_layers(o.layers_file);
   std::vector<Piece> out;
   std::map<std::string, int> count;
-  for (const RawPolyline& p : d.polylines) {
-    if (ignored_layer(p.layer)) continue;
-    const std::string where = path + ": layer '" + printable(p.layer) + "', entity " + p.handle;
+  size_t vertices = 0;
+  for (const DxfPolyline& p : d.polylines) {
+    if (ignored_layer(p.e.layer)) continue;
+    const std::string where = path + ": layer '" + printable(p.e.layer) + "', entity " + printable(p.e.handle);
+    const std::string at = path + ":" + std::to_string(p.e.line) + ": " + p.e.name();
     if (p.mesh) throw CaseError(where + ": a polygon mesh, not a block outline");
+    if (p.e.off_plane) throw CaseError(at + ": group codes 210/220/230: drawn in another plane than x-y (only 2D drawings import)");
     if (!p.closed) throw CaseError(where + ": an open polyline: a block must be a closed polyline (set its closed flag)");
     if (p.v.size() < 3) throw CaseError(where + ": a closed polyline of fewer than 3 vertices");
     Piece k;
-    k.layer = p.layer;
-    k.handle = p.handle;
+    k.layer = p.e.layer;
+    k.handle = p.e.handle;
+    for (const DxfVertex& v : p.v)
+      if (!(std::max(std::abs(v.x), std::abs(v.y)) * scale <= kMaxCoordinate))
+        throw CaseError(path + ":" + std::to_string(v.line) + ": " + p.e.name() +
+                        ": group codes 10/20: a vertex beyond 1e5 m from the origin (README, \"Ranges\"; a drawing unit is " +
+                        fmt::g(scale, 6) + " m)");
     for (size_t i = 0; i < p.v.size(); ++i) {
-      const RawVertex &a = p.v[i], &b = p.v[(i + 1) % p.v.size()];
-      append_arc(k.v, scale * Vec2(a.x, a.y), scale * Vec2(b.x, b.y), a.bulge, o.arc_tolerance);
+      const DxfVertex &a = p.v[i], &b = p.v[(i + 1) % p.v.size()];
+      if (!append_arc(k.v, scale * Vec2(a.x, a.y), scale * Vec2(b.x, b.y), a.bulge, o.arc_tolerance))
+        throw CaseError(path + ":" + std::to_string(a.line) + ": " + p.e.name() + ": group code 42 = " + fmt::g(a.bulge, 6) +
+                        ": the arc needs more than " + std::to_string(static_cast<long>(kMaxChordsPerArc)) +
+                        " chords within --arc-tolerance " + fmt::g(o.arc_tolerance, 6) + " m (a drafting error, or give a larger tolerance)");
     }
     // The closing vertex repeated on the first (some programs write it): drop it.
     if (k.v.size() > 3 && (k.v.front() - k.v.back()).norm() <= 1e-12 * (1 + k.v.front().norm())) k.v.pop_back();
-    const auto lp = layers.find(p.layer);
+    vertices += k.v.size();
+    if (vertices > kMaxVertices)
+      throw CaseError(at + ": the drawing's blocks have more than " + std::to_string(kMaxVertices) +
+                      " vertices with their arcs as chords (give a larger --arc-tolerance)");
+    const auto lp = layers.find(p.e.layer);
     const LayerProps props = lp == layers.end() ? LayerProps{} : lp->second;
-    k.support = props.support.value_or(layer_is(p.layer, "support"));
+    k.support = props.support.value_or(layer_is(p.e.layer, "support"));
     k.depth = props.depth.value_or(o.depth);
     if (!k.support) {
       if (!props.density && !(o.density > 0))
@@ -252,21 +242,27 @@ std::vector<Piece> blocks_of(const std::string& path, const RawDrawing& d, doubl
                                 "(give --density or the layer's density in --layers)");
       k.density = props.density.value_or(o.density);
     }
-    k.id = printable(p.layer, 40) + "-" + std::to_string(++count[p.layer]);
+    k.id = printable(p.e.layer, 40) + "-" + std::to_string(++count[p.e.layer]);
+    k.box = bounds(k.v);
     out.push_back(std::move(k));
   }
   if (out.empty()) throw CaseError(path + ": no closed polyline on a block layer: nothing to import");
   // A TEXT or MTEXT inside a polygon names its block.
-  std::map<std::string, std::string> named_by;
-  for (const RawText& t : d.texts) {
-    if (ignored_layer(t.layer) || t.text.empty()) continue;
+  const PieceGrid grid(out, 0.0);
+  std::vector<const DxfText*> named_by(out.size(), nullptr);
+  for (const DxfText& t : d.texts) {
+    if (ignored_layer(t.e.layer) || t.text.empty()) continue;
+    if (t.e.off_plane)
+      throw CaseError(path + ":" + std::to_string(t.e.line) + ": " + t.e.name() + ": group codes 210/220/230: drawn in another plane than x-y");
     const Vec2 at = scale * Vec2(t.x, t.y);
-    for (Piece& k : out) {
-      if (!point_in_polygon(at, k.v)) continue;
-      if (named_by.count(k.handle))
-        throw CaseError(path + ": layer '" + printable(k.layer) + "', entity " + k.handle + ": two texts inside the block ('" +
-                        printable(named_by[k.handle]) + "' and '" + printable(t.text) + "')");
-      named_by[k.handle] = t.text;
+    for (const int i : grid.near(at)) {
+      Piece& k = out[i];
+      if (!(k.box.lo.x() <= at.x() && at.x() <= k.box.hi.x() && k.box.lo.y() <= at.y() && at.y() <= k.box.hi.y()) || !point_in_polygon(at, k.v))
+        continue;
+      if (named_by[i])
+        throw CaseError(path + ": layer '" + printable(k.layer) + "', entity " + printable(k.handle) + ": two texts inside the block ('" +
+                        printable(named_by[i]->text) + "' and '" + printable(t.text) + "')");
+      named_by[i] = &t;
       k.id = t.text;
     }
   }
@@ -278,12 +274,15 @@ std::vector<Piece> blocks_of(const std::string& path, const RawDrawing& d, doubl
 int snap_pieces(std::vector<Piece>& ps, double snap) {
   if (!(snap > 0)) return 0;
   int moved = 0;
+  // Vertices move by at most `snap`, so a piece's vertices stay within its box grown by it.
+  const PieceGrid grid(ps, 2 * snap);
   for (size_t i = 0; i < ps.size(); ++i)
     for (Vec2& p : ps[i].v) {
       double best = snap;
       Vec2 target = p;
       bool on_vertex = false;
-      for (size_t j = 0; j < ps.size(); ++j) {
+      for (const int jj : grid.near(p)) {
+        const size_t j = static_cast<size_t>(jj);
         if (j == i) continue;
         const auto& q = ps[j].v;
         for (size_t e = 0; e < q.size(); ++e) {
@@ -317,8 +316,11 @@ std::vector<std::string> near_joints(const std::vector<Piece>& ps, double tol, d
   std::vector<std::string> out;
   std::vector<Bounds> box;
   for (const Piece& k : ps) box.push_back(bounds(k.v));
+  const PieceGrid grid(ps, near);
   for (size_t i = 0; i < ps.size(); ++i)
-    for (size_t j = i + 1; j < ps.size(); ++j) {
+    for (const int jj : grid.near(box[i])) {
+      const size_t j = static_cast<size_t>(jj);
+      if (j <= i) continue;
       if ((box[i].lo - box[j].hi).maxCoeff() > near || (box[j].lo - box[i].hi).maxCoeff() > near) continue;
       // The nearest vertex of either block to the other's outline.
       double gap = INFINITY;
@@ -341,6 +343,37 @@ std::vector<std::string> near_joints(const std::vector<Piece>& ps, double tol, d
   return out;
 }
 
+// What the import left out, for the notes: LINE entities and other entity types on block layers,
+// and whatever stands in paper space.
+std::string skipped_note(const DxfDrawing& d) {
+  std::map<std::string, int> n;
+  int paper = 0;
+  for (const DxfEntity& e : d.lines)
+    if (!ignored_layer(e.layer)) ++n["LINE"];
+  for (const DxfEntity& e : d.skipped) {
+    if (e.paper_space) ++paper;
+    else if (!ignored_layer(e.layer)) ++n[printable(e.type, 40)];
+  }
+  std::string s;
+  for (const auto& [type, k] : n) s += (s.empty() ? "" : ", ") + std::to_string(k) + " " + type;
+  if (!s.empty()) s += " ignored (blocks are closed polylines)";
+  if (paper) s += (s.empty() ? "" : "; ") + std::to_string(paper) + " entities in paper space ignored (the drawing is model space)";
+  return s;
+}
+
+// The options' own ranges, before the drawing is read.
+void check_options(const std::string& path, const DxfImportOptions& o) {
+  const auto length = [&](double x, const char* name, bool zero_ok) {
+    if (std::isfinite(x) && (zero_ok ? x >= 0 : x > 0) && x <= kMaxCoordinate) return;
+    throw CaseError(path + ": " + name + " " + fmt::g(x, 6) + ": must be a length in m, " + (zero_ok ? "0" : "above 0") + " to 1e5");
+  };
+  length(o.arc_tolerance, "--arc-tolerance", false);
+  length(o.snap, "--snap", true);
+  length(o.near_joint, "--near-joint", true);
+  length(o.depth, "--depth", false);
+  if (!(std::isfinite(o.density) && o.density >= 0)) throw CaseError(path + ": --density " + fmt::g(o.density, 6) + ": must be a density in kg/m^3");
+}
+
 json merge_fragment(const std::string& file) {
   if (file.empty()) return json::object();
   const json doc = read_json(file, "the fragment to merge");
@@ -355,14 +388,17 @@ json merge_fragment(const std::string& file) {
 }  // namespace
 
 DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
-  const RawDrawing d = read_drawing(path);
+  check_options(path, o);
+  const DxfDrawing d = read_dxf(path);
   const double scale = unit_scale(path, o.units, d.insunits);
   std::vector<Piece> pieces = blocks_of(path, d, scale, o);
   DxfImport out;
-  if (d.ignored_lines > 0)
-    out.notes.push_back(std::to_string(d.ignored_lines) + " LINE entities ignored (blocks are closed polylines)");
-  if (const int moved = snap_pieces(pieces, o.snap))
-    out.notes.push_back(std::to_string(moved) + " vertices snapped onto a neighbouring block (--snap " + std::to_string(o.snap) + " m)");
+  const std::string skipped = skipped_note(d);
+  if (!skipped.empty()) out.notes.push_back(skipped);
+  if (const int moved = snap_pieces(pieces, o.snap)) {
+    out.notes.push_back(std::to_string(moved) + " vertices snapped onto a neighbouring block (--snap " + fmt::g(o.snap) + " m)");
+    for (Piece& k : pieces) k.box = bounds(k.v);
+  }
 
   // Stage 5: the case, the fragment merged over it, checked by the loader.
   json doc = {{"format", "masonry-case/1"},
@@ -386,14 +422,15 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
   const std::vector<std::string> near = near_joints(pieces, tol, std::max(o.near_joint, o.snap));
   out.notes.insert(out.notes.end(), near.begin(), near.end());
   try {
-    out.c = parse_case(doc.dump(), path);
+    // Text the drawing could not give as UTF-8 (a --name, say) is replaced, never a crash.
+    out.c = parse_case(doc.dump(-1, ' ', false, json::error_handler_t::replace), path);
   } catch (const CaseError& e) {
     // Say where in the drawing each block the message names comes from.
     std::string msg = e.what();
     std::string where;
     for (const Piece& k : pieces)
       if (msg.find("'" + printable(k.id) + "'") != std::string::npos)
-        where += (where.empty() ? "" : "; ") + printable(k.id) + ": layer '" + printable(k.layer) + "', entity " + k.handle;
+        where += (where.empty() ? "" : "; ") + printable(k.id) + ": layer '" + printable(k.layer) + "', entity " + printable(k.handle);
     if (!where.empty()) msg += " [drawing: " + where + "]";
     if (!near.empty()) msg += " [" + near.front() + "]";
     throw CaseError(msg);

@@ -1,7 +1,7 @@
 // Importing a drawing: the closed polylines of a DXF file become the blocks of a case
-// (cases/README.md, "Importing a drawing"). The DXF is read with dxflib (Debian's libdxflib);
-// everything a case file must satisfy is then checked by the case loader, with messages that
-// name the drawing's layer and entity handle.
+// (cases/README.md, "Importing a drawing"). The DXF is read by cases/dxf_reader.hpp, every value
+// checked against the DXF reference; everything a case file must satisfy is then checked by the
+// case loader, with messages that name the drawing's layer and entity handle.
 #pragma once
 
 #include <string>

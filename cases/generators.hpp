@@ -95,6 +95,10 @@ struct GothicCathedral {
   double lower_flyer_head = 24.0; // intrados of the lower flyer's head on the pier, m
   double lower_flyer_foot = 20.0; // intrados of its foot on the buttress (clears the aisle extrados, 19.6 m)
   double upper_flyer_head = 30.2; // head top at the nave springing, where the nave arch thrusts
+  // Place the upper flyer's head top at the nave springing whatever the springing and the flyer
+  // thickness (upper_flyer_head = nave_springing - flyer_thickness: 30.2 m with the defaults),
+  // for studies that vary either (sweep/README.md).
+  bool upper_flyer_at_springing = false;
   double upper_flyer_foot = 26.0; // on the buttress' second stage
   double buttress_height = 33.0;  // a stage above the upper seat (26.5 m)
   double foundation_height = 1.0; // support blocks, m
@@ -117,6 +121,57 @@ struct GothicCathedral {
   int max_steps = 300;
 };
 Case gothic_cathedral(const GothicCathedral& p);
+
+// A brick wall in elevation (cases/README.md, "Brick wall"): `courses` courses of `course_height`,
+// each of `bricks` units laid in a bond, on two support blocks that split the ground at
+// `ground_split` (m from the wall's left end); one of them settles and/or turns. Left end of the
+// wall at x = 0, its base at y = 0. Block ids: "c<course>-<k>" (course 0 at the bottom, k from
+// the left), "lintel-<o>", "arch-<o>-v<k>" (voussoirs), "arch-<o>-s<k>" (spandrel pieces),
+// "ground-left", "ground-right".
+//   running: stretchers of brick_length, alternate courses offset by half a brick (half bricks
+//            at the ends);
+//   stack:   stretchers, every head joint on one vertical line;
+//   header:  headers of header_length (the brick's width), alternate courses offset by half a
+//            header.
+enum class WallBond { running, stack, header };
+const char* wall_bond_name(WallBond b);  // "running", "stack", "header": the CLI's words
+// An opening: its left edge x, sill and height (m, from the wall's left end and base; sill and
+// top are moved to the nearest course joint), closed above by a lintel (one course high,
+// bearing `lintel_bearing` on each side) or a semicircular arch of `arch_voussoirs` voussoirs
+// (0: about one per course height of the centreline) whose span is the opening's width and
+// whose springing is the opening's top; the arch's ring is `arch_thickness` thick and its
+// spandrels are cut radially up to the first course joint half a course above the extrados.
+enum class OpeningTop { lintel, arch };
+struct WallOpening {
+  double x = 0, sill = 0, width = 0, height = 0;  // m
+  OpeningTop top = OpeningTop::lintel;
+};
+// Which ground block moves: the part left or right of the split, or neither.
+enum class MovingGround { none, left, right };
+struct BrickWall {
+  WallBond bond = WallBond::running;
+  int courses = 10;
+  int bricks = 10;              // units per course: stretchers (running, stack) or headers
+  double brick_length = 0.25;   // m
+  double header_length = 0.125; // m: a header's face (the brick's width), header bond
+  double course_height = 0.125; // m
+  double depth = 0.25;          // out-of-plane thickness of the wall, m
+  double density = 1800.0;      // kg/m^3
+  std::vector<WallOpening> openings;
+  double lintel_bearing = 0.125;  // m, on each side of an opening
+  double arch_thickness = 0.125;  // m
+  int arch_voussoirs = 0;
+  double ground_height = 0.25;    // m
+  double ground_split = -1;       // m from the left end; < 0: the middle
+  MovingGround moving = MovingGround::right;
+  double settlement_step = 0.001;  // m down per step
+  double rotation_step = 0.0;      // rad counter-clockwise per step, about the split's top point
+  double step = 0.001;             // m of d per step
+  int max_steps = 100;
+};
+Case brick_wall(const BrickWall& p);
+// Parses "X,SILL,WIDTH,HEIGHT[,lintel|arch]" (m); throws CaseError naming the text.
+WallOpening parse_wall_opening(const std::string& text);
 
 // The standard scenes checked in under cases/ ("pointed-arch", "cathedral-settlement",
 // "cathedral-settlement-rotation"): name, one-line summary, and the case itself.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "compare/report.hpp"
 #include "model/io.hpp"
 #include "report/format.hpp"
+#include "runs/progress.hpp"
 #include "runs/run.hpp"
 
 namespace masonry {
@@ -121,7 +123,8 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
   } else {
     results.reserve(1 + std::max<size_t>(1, o.frictions.size()));
     progress(o.quiet, "compare: PRD on " + c.name + " ...\n");
-    results.push_back(run_case(c, Method::prd, {o.out_dir + "/prd", {}}));
+    RunProgress prd_progress("compare: prd", c.motion.step * c.motion.max_steps);
+    results.push_back(run_case(c, Method::prd, {o.out_dir + "/prd", o.quiet ? std::function<void(const RunResult&)>() : std::ref(prd_progress)}));
     progress(o.quiet, "compare: PRD capacity " + num_text(results.back().capacity) + " m, " + num_text(results.back().timing.total_s) + " s\n");
     runs.push_back({prd_label(results.back().settings.value("hold_closed", nlohmann::json::array())), nullptr, "prd"});
     std::vector<double> phis = o.frictions;
@@ -132,13 +135,8 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       const std::string sub = phis.size() == 1 ? "dem" : "dem-phi" + num_text(phi);
       const std::string dir = o.out_dir + "/" + sub;
       progress(o.quiet, "compare: DEM (friction " + num_text(phi) + " deg) on " + c.name + " ...\n");
-      int last_step = -1;
-      results.push_back(run_case(dc, Method::dem, {dir, [&](const RunResult& part) {
-                                   if (!part.steps.empty() && part.steps.back().index % 10 == 0 && part.steps.back().index != last_step) {
-                                     last_step = part.steps.back().index;
-                                     progress(o.quiet, "  dem: d = " + num_text(part.steps.back().d) + " m\n");
-                                   }
-                                 }}));
+      RunProgress dem_progress("compare: dem", dc.motion.step * dc.motion.max_steps, 0.0, dem_step_detail);
+      results.push_back(run_case(dc, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)}));
       progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " m, " + num_text(results.back().timing.total_s) + " s\n");
       runs.push_back({dem_label(phi), nullptr, sub});
     }
@@ -157,13 +155,14 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
   for (size_t k = 0; k < rep.comparisons.size(); ++k) {
     const Comparison& cmp = rep.comparisons[k];
     // fmt: "n/a", never "nan", for what a run's results do not give (an outside solver's timing).
-    std::fprintf(stderr, "compare: %s: %s %.4g m, %s %.4g m (%s), thrust difference max %s W rms %s W, times %s s / %s s\n",
-                 c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, cmp.b.label.c_str(), cmp.b.capacity, fmt::pct(cmp.capacity_rel_diff).c_str(),
-                 fmt::g(cmp.thrust_max_diff).c_str(), fmt::g(cmp.thrust_rms_diff).c_str(), fmt::g(cmp.a.time_s).c_str(), fmt::g(cmp.b.time_s).c_str());
+    if (!o.quiet)
+      std::fprintf(stderr, "compare: %s: %s %.4g m, %s %.4g m (%s), thrust difference max %s W rms %s W, times %s s / %s s\n",
+                   c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, cmp.b.label.c_str(), cmp.b.capacity, fmt::pct(cmp.capacity_rel_diff).c_str(),
+                   fmt::g(cmp.thrust_max_diff).c_str(), fmt::g(cmp.thrust_rms_diff).c_str(), fmt::g(cmp.a.time_s).c_str(), fmt::g(cmp.b.time_s).c_str());
     for (const std::string& v : rep.violations[k]) std::cerr << "compare: limit exceeded: " << v << "\n";
     failed = failed || !rep.violations[k].empty();
   }
-  std::cerr << "compare: report in " << o.out_dir << "/report.html and " << o.out_dir << "/report.md\n";
+  if (!o.quiet) std::cerr << "compare: report in " << o.out_dir << "/report.html and " << o.out_dir << "/report.md\n";
   if (errored) std::cerr << "compare: a run ended without a located answer (an error, or undecided: see its results.json)\n";
   return failed || errored ? kExitFailed : kExitDone;
 }
@@ -188,7 +187,7 @@ void add_common_options(CLI::App* sub, CompareOpts& o) {
   sub->add_option("--notes", o.notes,
                   "Plain-text file of the author's notes on the result (paragraphs separated by blank lines), shown after the "
                   "tolerance checks, e.g. the mechanical reason a check fails");
-  sub->add_flag("--quiet", o.quiet, "No progress lines");
+  sub->add_flag("--quiet", o.quiet, "No progress lines and no summary: only warnings and why the exit code is not 0");
 }
 
 }  // namespace
@@ -213,7 +212,7 @@ void add_compare_commands(CLI::App& app, Commands& out) {
     CLI::App* sub = app.add_subcommand(
         "demo", "The main job: PRD against DEM on the paper's pointed arch (built-in), under a minute; prints where the report is");
     sub->add_option("--out", o->out_dir, "Output directory (default out/demo)");
-    sub->add_flag("--quiet", o->quiet, "No progress lines");
+    sub->add_flag("--quiet", o->quiet, "No progress lines and no summary: only warnings, why the exit code is not 0 and where the report is");
     out.push_back({sub, [o]() {
                      // The standard case as the paper ran it: 1 mm increments, friction 35 deg and
                      // the joint stiffnesses divided by 10 (its Section 3.3), which is what brings

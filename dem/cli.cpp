@@ -15,6 +15,7 @@
 #include "dem/variants.hpp"
 #include "model/interfaces.hpp"
 #include "runs/parallel.hpp"
+#include "runs/progress.hpp"
 #include "runs/run.hpp"
 
 namespace masonry {
@@ -78,11 +79,15 @@ int run_study(const Case& c, const DemSettings& base, Study kind, const Opts& o)
   const std::vector<DemVariant> variants = kind == Study::stiffness ? stiffness_variants(base) : convergence_variants(base);
   const std::string name = study_name(kind);
   std::mutex io;
+  size_t done = 0;
+  const StudyProgress progress("dem " + name, o.only.empty() && !o.read_back ? variants.size() : o.only.size());
   const std::vector<RunResult> runs = study_runs(c, kind, variants, o, [&](size_t i, const RunResult& r) {
-    if (o.quiet) return;
     std::lock_guard<std::mutex> lock(io);
-    std::fprintf(stderr, "dem %s: %-15s %s, capacity %.6g m, %.3g s CPU\n", name.c_str(), variants[i].name.c_str(), status_name(r.status),
-                 r.capacity, r.timing.total_s);
+    ++done;
+    if (o.quiet) return;
+    char b[160];
+    std::snprintf(b, sizeof b, "%s: %s, capacity %.6g m, %.3g s CPU", variants[i].name.c_str(), status_name(r.status), r.capacity, r.timing.total_s);
+    std::cerr << progress.line(done, b) << "\n" << std::flush;
   });
   for (size_t i = 0; i < variants.size(); ++i) {
     study.entries.push_back({variants[i].name, variants[i].what, runs[i], std::nullopt});
@@ -123,7 +128,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   f.add(sub, "--friction", "dem.friction_angle", K::number, "Friction angle, degrees (default 35)");
   f.add(sub, "--stiffness-reduction", "dem.stiffness_reduction", K::number, "Divide kn and ks by this (default 1; the paper used 10)");
   f.add(sub, "--damping", "dem.damping", K::number, "Local damping coefficient in [0, 1) (default 0.8)");
-  f.add(sub, "--timestep-factor", "dem.timestep_factor", K::number, "Time step / critical time step bound, in (0, 1] (default 0.8)");
+  f.add(sub, "--timestep-factor", "dem.timestep_factor", K::number, "Time step / critical time step bound, in (0, 1] (default 1)");
   f.add(sub, "--equilibrium-tolerance", "dem.equilibrium_tolerance", K::number, "Largest unbalanced force / block weight at equilibrium (default 1e-4)");
   f.add(sub, "--velocity-tolerance", "dem.velocity_tolerance", K::number, "Largest block speed at equilibrium, m/s (default 1e-5)");
   f.add(sub, "--hold-time", "dem.hold_time", K::number, "Model-time cap of one hold, s: a hold that neither settles nor runs away by then is undecided (default 30)");
@@ -141,7 +146,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   f.add(sub, "--hold-damping", "dem.hold_damping", K::text,
         "How holds come to rest: local (local damping alone, the default) or kinetic (also stop every free block when the "
         "kinetic energy passes a peak; dem/README.md, \"Holds: local or kinetic damping\")");
-  sub->add_flag("--quiet", o->quiet, "No progress lines");
+  sub->add_flag("--quiet", o->quiet, "No progress lines and no summary: only warnings and why a run failed");
   sub->add_flag("--convergence", o->convergence,
                 "Convergence study: the run at these settings and at settings that must not matter (dem/README.md), "
                 "DIR/convergence.{json,md}, each run in DIR/<variant>/; exit code 1 when the spread or the default against PRD exceeds its limit");
@@ -163,17 +168,9 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    if (!o->quiet) warn_dem_cost(c, s);
                    if (o->convergence) return run_study(c, s, Study::convergence, *o);
                    if (o->stiffness_study) return run_study(c, s, Study::stiffness, *o);
-                   const RunResult r = run_dem(c, s, {o->out_dir, [&](const RunResult& part) {
-                     if (o->quiet || part.steps.empty()) return;
-                     const StepRecord& st = part.steps.back();
-                     // With the time the remaining increments would take at this pace if the run went to
-                     // max_steps (a collapse ends it sooner).
-                     const double t = part.timing.total_s;
-                     const double left = st.index > 0 ? t / st.index * std::max(0, s.max_steps - st.index) : 0.0;
-                     std::fprintf(stderr, "dem: step %d d=%.6g m  cycles %lld (total %lld)  unbalanced %.2e  %s  %.0f s, at most %.0f s more\n",
-                                  st.index, st.d, st.hold ? st.hold->cycles : 0LL, part.timing.cycles,
-                                  st.hold ? st.hold->unbalanced_ratio : 0.0, st.hold ? st.hold->hold_end.c_str() : "?", t, left);
-                   }});
+                   RunProgress progress("dem", s.step * s.max_steps, 0.0, dem_step_detail);
+                   const RunResult r =
+                       run_dem(c, s, {o->out_dir, o->quiet ? std::function<void(const RunResult&)>() : std::ref(progress)});
                    if (!o->quiet)
                      std::fprintf(stderr, "dem: %s, capacity %.6g m after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n",
                                   status_name(r.status), r.capacity, r.stable_steps, r.timing.cycles, r.timing.total_s,

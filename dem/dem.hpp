@@ -16,6 +16,10 @@
 
 namespace masonry {
 
+// The gravity the DEM's inertia is scaled to, m/s^2 (DemModel::mass_scale): the protocol's times
+// and speeds are those of a structure under this gravity, whatever the case's.
+constexpr double kReferenceGravity = 9.81;
+
 // The DEM's settings (model/case.hpp's DemOptions, declared once there) and the motion's
 // increment, as one run takes them.
 struct DemSettings : DemOptions {
@@ -59,6 +63,10 @@ class DemModel {
   // bounded by its whole perimeter in contact, and the 2 covers coupling to a neighbour.
   double critical_dt() const;
   double dt() const;           // timestep_factor * critical_dt
+  // Factor on every free block's inertia (mass and moment): the acceleration the dead loads give
+  // the structure over kReferenceGravity (1 at g = 9.81). Times, speeds and kinetic
+  // energies are those of the scaled model.
+  double mass_scale() const;
   double time() const;         // model time, s
   long long cycles() const;
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "dem/model_impl.hpp"
+#include "model/interfaces.hpp"
 
 namespace masonry {
 
@@ -29,6 +30,29 @@ struct QueryCollector {
 
 }  // namespace
 
+// The model's frame. A block's motion per cycle is often 1e-11 m or less (a creep of 1e-6 m/s at
+// a time step of 1e-5 s), which a double at 7e4 m (resolution 1.5e-11 m) no longer holds: the
+// pointed arch moved to (7e4, 7e4) m found its limit at 0.091 m instead of 0.276 m, and the
+// broad phase's float boxes lose the margin there too (float resolution 7.8 mm at 6.5e4 m). So a
+// scene farther from the world origin than its own size is computed about its centre. Nearer,
+// the coordinates carry the scene's resolution to within a factor 2, and the frame is the world's
+// (the results do not change by a rounding).
+Vec2 DemModel::Impl::frame_origin(const Case& cs) {
+  const Bounds bb = scene_bounds(cs);
+  const Vec2 centre = 0.5 * (bb.lo + bb.hi);
+  return centre.norm() > bb.size() ? centre : Vec2(0, 0);
+}
+
+Case DemModel::Impl::shifted(const Case& cs, const Vec2& by) {
+  Case f = cs;
+  if (by == Vec2(0, 0)) return f;
+  for (Block& b : f.blocks)
+    for (Vec2& v : b.vertices) v -= by;
+  for (Load& l : f.loads) l.point -= by;
+  for (SupportMotion& m : f.motion.supports) m.about -= by;
+  return f;
+}
+
 DemSettings DemSettings::from_case(const Case& c) {
   DemSettings s;
   static_cast<DemOptions&>(s) = c.dem;
@@ -41,6 +65,7 @@ void DemModel::Impl::setup() {
   check_settings();
   build_blocks();
   set_time_step();
+  check_joint_stiffness();
   transform_pieces(true);
   rebuild();
 }
@@ -48,7 +73,7 @@ void DemModel::Impl::setup() {
 void DemModel::Impl::check_settings() const {
   // The case loader's own check (one definition of every range), for settings a study derives
   // in code; then the motion's increment, which DemSettings carries beside them.
-  check_dem_options(s, c.source);
+  check_dem_options(s, c.source, s.allow_unstable_timestep);
   if (!(s.step > 0) || !std::isfinite(s.step)) throw CaseError(c.source + ": motion: field 'step' must be a positive number of m");
   if (s.max_steps < 0) throw CaseError(c.source + ": motion: field 'max_steps' must be >= 0");
 }
@@ -58,6 +83,7 @@ void DemModel::Impl::build_blocks() {
   support.assign(nb, 0);
   mass.assign(nb, 0);
   inertia.assign(nb, 0);
+  weight.assign(nb, 0);
   wref.assign(nb, 0);
   gyr.assign(nb, 0);
   rmax.assign(nb, 0);
@@ -87,6 +113,7 @@ void DemModel::Impl::build_blocks() {
       const double area = std::abs(signed_area(bl.vertices));
       mass[b] = block_mass(bl);
       inertia[b] = bl.density * bl.depth * polar_moment(bl.vertices);
+      weight[b] = mass[b] * c.gravity;
       if (!(mass[b] > 0) || !(inertia[b] > 0) || !std::isfinite(mass[b]) || !std::isfinite(inertia[b]))
         throw std::runtime_error(c.source + ": block '" + bl.id + "': field 'density': the block's mass (" + std::to_string(mass[b]) +
                                  " kg) or moment of inertia is not positive and finite");
@@ -120,6 +147,31 @@ void DemModel::Impl::build_blocks() {
   for (int b = 0; b < nb; ++b)
     if (!support[b] && !(wref[b] > 0)) wref[b] = 1.0;  // weightless, unloaded: ratio in newtons
   margin = 0.05 * min_size;
+  scale_masses();
+}
+
+// Mass scaling (3DEC's density scaling for static problems): a quasi-static answer does not
+// depend on the blocks' inertia, only on their weights and the joints, so the inertia of every
+// free block is scaled by one factor that brings the acceleration the dead loads give the
+// structure (its gravity, or loads over mass where gravity is 0) to kReferenceGravity. The
+// protocol's times and speeds (hold cap, velocity tolerance, the servo's limits) then mean the
+// same at any gravity: at g = 1e-4 a gravity mechanism otherwise takes 313 times longer in model
+// time than at 9.81, and the 30 s hold cap, the 1e-5 m/s tolerance and the servo met a structure
+// 313 times slower than the one they were set for (the tilting block "toppled" at 1 degree).
+// Joint stiffness against weight is not scaled: it is physics (the overlaps under the weights).
+// At g = 9.81 the factor is exactly 1.
+void DemModel::Impl::scale_masses() {
+  double m_sum = 0, loads = 0;
+  for (int b = 0; b < nb; ++b)
+    if (!support[b]) m_sum += mass[b];
+  for (size_t l = 0; l < load_block.size(); ++l)
+    if (!support[load_block[l]]) loads += load_force[l].norm();
+  const double g = c.gravity > 0 ? c.gravity : loads / m_sum;
+  mass_scale = g / kReferenceGravity;
+  if (!(mass_scale > 0) || !std::isfinite(mass_scale))
+    throw std::runtime_error(c.source + ": gravity and loads: the dead loads give the blocks no finite acceleration");
+  if (mass_scale == 1.0) return;
+  for (int b = 0; b < nb; ++b) mass[b] *= mass_scale, inertia[b] *= mass_scale;
 }
 
 void DemModel::Impl::set_time_step() {
@@ -139,18 +191,22 @@ void DemModel::Impl::set_time_step() {
     throw std::runtime_error(m.str());
   }
 
-  double lam = 0;  // bound on omega^2 / (kn + ks)
+  // Per block, the edges a contact can take as its incident edge are those of the block's convex
+  // pieces: its faces, and for a block split into pieces (more than 8 vertices, or not convex)
+  // the pieces' inner edges too, since a piece touching another block at a corner may clip one
+  // of them. Each counts with the area a manifold point gives it (contact_forces: the clipped
+  // length, at least 0.1 margin). For a convex block of at most 8 vertices this is its faces.
+  double lam = 0;  // bound on omega^2
   for (int b = 0; b < nb; ++b) {
     if (support[b]) continue;
-    // The faces contacts see: a straight-angle vertex would split a face in the bound's sum.
-    const std::vector<Vec2> v = dem::without_straight_vertices(c.blocks[b].vertices);
     double P = 0, J = 0;
-    for (size_t i = 0, n = v.size(); i < n; ++i) {
-      const Vec2 &p = v[i], &q = v[(i + 1) % n];
-      const double L = (q - p).norm();
-      P += L;
-      J += L * ((p - c0[b]).squaredNorm() + (q - c0[b]).squaredNorm()) / 2;
-    }
+    for (const std::vector<Vec2>& v : dem::convex_pieces(c.blocks[b].vertices))
+      for (size_t i = 0, n = v.size(); i < n; ++i) {
+        const Vec2 &p = v[i], &q = v[(i + 1) % n];
+        const double L = std::max((q - p).norm(), 0.1 * margin);
+        P += L;
+        J += L * ((p - c0[b]).squaredNorm() + (q - c0[b]).squaredNorm()) / 2;
+      }
     lam = std::max(lam, 2 * depth[b] * ((kn + ks) * P / mass[b] + std::max(kn, ks) * J / inertia[b]));
   }
   dt_crit = 2 / std::sqrt(lam);
@@ -163,6 +219,34 @@ void DemModel::Impl::set_time_step() {
   }
   dt = s.timestep_factor * dt_crit;
   open_gap = s.open_gap.value_or(c.prd.contact_tolerance);
+}
+
+// A rigid-block model needs the joints' elastic overlaps small against the blocks. A lower bound
+// on a block's overlap is its own weight (and loads) over kn times the area of all its joints
+// (each joint's length times the smaller depth, as contact_forces takes it): the real overlap is
+// larger, since only some joints carry it, and so are the blocks above. Where even that bound is
+// 5% of the block's size, the DEM would compute a block sinking into its neighbours, not a
+// masonry structure: a block 1e5 m deep on a 1 m deep ground carries its weight on 1 m of depth
+// and sank 7.8 m into it at the tilting block's kn. Refused with the numbers instead.
+void DemModel::Impl::check_joint_stiffness() const {
+  std::vector<double> area(nb, 0.0);
+  for (const Interface& J : detect_interfaces(c, c.prd.contact_tolerance)) {
+    const double a = J.length() * std::min(depth[J.i], depth[J.j]);
+    area[J.i] += a;
+    area[J.j] += a;
+  }
+  for (int b = 0; b < nb; ++b) {
+    if (support[b] || !(area[b] > 0)) continue;
+    const double overlap = wref[b] / (kn * area[b]);
+    const double size = std::sqrt(std::abs(signed_area(c.blocks[b].vertices)));
+    if (overlap <= kMaxOverlap * size) continue;
+    std::ostringstream m;
+    m << c.source << ": block '" << printable(c.blocks[b].id) << "': field 'depth': its joints would overlap by at least "
+      << overlap << " m under its own weight (" << wref[b] << " N over kn " << kn << " Pa/m x " << area[b]
+      << " m^2 of joints, each at the smaller depth of its two blocks), over " << kMaxOverlap * 100
+      << "% of its size: far too soft a joint for a rigid-block model; match the depths or raise dem.young_modulus or dem.kn";
+    throw CaseError(m.str());
+  }
 }
 
 void DemModel::Impl::place_support(int b, double d, Vec2& x, double& th) const {
@@ -199,6 +283,23 @@ void DemModel::Impl::transform_pieces(bool all) {
 
 // Candidate pairs: pieces of different blocks (not two supports) whose boxes, grown by the
 // margin, overlap. Valid until some block has moved half the margin.
+// A box in the tree's float coordinates, rounded outwards: it always contains the double box, so
+// the exact test below never meets a pair the tree dropped.
+b2AABB DemModel::Impl::float_box(const Vec2& lo, const Vec2& hi) const {
+  const auto down = [](double x) {
+    const float f = static_cast<float>(x);
+    return static_cast<double>(f) <= x ? f : std::nextafter(f, -INFINITY);
+  };
+  const auto up = [](double x) {
+    const float f = static_cast<float>(x);
+    return static_cast<double>(f) >= x ? f : std::nextafter(f, INFINITY);
+  };
+  b2AABB box;
+  box.lowerBound.Set(down(lo.x()), down(lo.y()));
+  box.upperBound.Set(up(hi.x()), up(hi.y()));
+  return box;
+}
+
 void DemModel::Impl::rebuild() {
   ++rebuilds;
   transform_pieces(false);
@@ -214,19 +315,13 @@ void DemModel::Impl::rebuild() {
     }
     lo[p].array() -= margin;
     hi[p].array() += margin;
-    b2AABB box;
-    box.lowerBound.Set(static_cast<float>(lo[p].x()), static_cast<float>(lo[p].y()));
-    box.upperBound.Set(static_cast<float>(hi[p].x()), static_cast<float>(hi[p].y()));
-    tree.CreateProxy(box, reinterpret_cast<void*>(static_cast<intptr_t>(p)));
+    tree.CreateProxy(float_box(lo[p], hi[p]), reinterpret_cast<void*>(static_cast<intptr_t>(p)));
   }
   std::vector<Pair> fresh;
   for (int p = 0; p < np; ++p) {
     scratch.clear();
     QueryCollector q{&tree, p, &scratch};
-    b2AABB box;
-    box.lowerBound.Set(static_cast<float>(lo[p].x()), static_cast<float>(lo[p].y()));
-    box.upperBound.Set(static_cast<float>(hi[p].x()), static_cast<float>(hi[p].y()));
-    tree.Query(&q, box);
+    tree.Query(&q, float_box(lo[p], hi[p]));
     std::sort(scratch.begin(), scratch.end());
     for (int o : scratch) {
       const int ba = piece_block[p], bb = piece_block[o];
@@ -269,7 +364,7 @@ void DemModel::Impl::step() {
 
 void DemModel::Impl::body_forces() {
   for (int b = 0; b < nb; ++b) {
-    force[b] = Vec2(0, -mass[b] * c.gravity);
+    force[b] = Vec2(0, -weight[b]);
     torque[b] = 0;
   }
   for (size_t l = 0; l < load_block.size(); ++l) {

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include <box2d/b2_collision.h>
+
 #include "dem/contact.hpp"
 #include "dem/dem.hpp"
 
@@ -39,8 +41,16 @@ struct Pair {
 
 }  // namespace dem_detail
 
+// Largest lower bound on a joint's elastic overlap under its block's weight, as a fraction of
+// the block's size, the DEM accepts (check_joint_stiffness).
+constexpr double kMaxOverlap = 0.05;
+
 struct DemModel::Impl {
   using Pair = dem_detail::Pair;
+  // The case in the model's frame: the world shifted by -origin (DemModel::Impl::frame). Every
+  // position inside the model is in this frame; the public accessors add origin back.
+  Vec2 origin{0, 0};
+  Case framed;
   const Case& c;
   DemSettings s;
   double kn = 0, ks = 0, tan_phi = 0, dt_crit = 0, dt = 0, time = 0, margin = 0, open_gap = 0;
@@ -50,7 +60,10 @@ struct DemModel::Impl {
   // Blocks (contiguous arrays, case order).
   int nb = 0;
   std::vector<char> support;
-  std::vector<double> mass, inertia, wref, gyr, rmax, depth;
+  // mass and inertia are the inertial ones, scaled by mass_scale (setup: the structure's own
+  // gravity brought to kReferenceGravity); weight is the gravitational force, N, never scaled.
+  std::vector<double> mass, inertia, weight, wref, gyr, rmax, depth;
+  double mass_scale = 1.0;
   std::vector<Vec2> c0, pos, vel, force;
   std::vector<double> ang, spin, torque;
   std::vector<double> cs, sn;  // cos and sin of ang, once per cycle for all pieces of the block
@@ -77,16 +90,21 @@ struct DemModel::Impl {
   double ke_per_weight = INFINITY;  // m: max over free blocks of KE_b / wref_b
   double support_work = 0;  // J, done on the blocks by the moving supports since the start
 
-  Impl(const Case& cs, const DemSettings& st) : c(cs), s(st) {}
+  Impl(const Case& cs, const DemSettings& st) : origin(frame_origin(cs)), framed(shifted(cs, origin)), c(framed), s(st) {}
+  static Vec2 frame_origin(const Case& cs);
+  static Case shifted(const Case& cs, const Vec2& by);
 
   // Setup, in this order.
   void setup();
   void check_settings() const;
   void build_blocks();     // blocks' arrays, convex pieces, dead loads
+  void scale_masses();     // the inertia of the free blocks (mass_scale)
   void set_time_step();    // joint stiffnesses, the critical time step, dt
+  void check_joint_stiffness() const;  // overlaps small against the blocks (or CaseError)
 
   void place_support(int b, double d, Vec2& x, double& th) const;
   void transform_pieces(bool all);
+  b2AABB float_box(const Vec2& lo, const Vec2& hi) const;
   void rebuild();
   // One cycle: its stages, in this order (each a loop of its own over contiguous arrays).
   void step();

@@ -16,6 +16,7 @@ double DemModel::kn() const { return p_->kn; }
 double DemModel::ks() const { return p_->ks; }
 double DemModel::critical_dt() const { return p_->dt_crit; }
 double DemModel::dt() const { return p_->dt; }
+double DemModel::mass_scale() const { return p_->mass_scale; }
 double DemModel::time() const { return p_->time; }
 long long DemModel::cycles() const { return p_->cycles; }
 void DemModel::set_support_parameter(double d) { p_->d_target = d; }
@@ -29,7 +30,7 @@ void DemModel::stop_free_blocks() {
     if (!m.support[b]) m.vel[b] = Vec2::Zero(), m.spin[b] = 0;
 }
 DemBlockState DemModel::block(int b) const {
-  return {p_->pos[b], p_->ang[b], p_->vel[b], p_->spin[b]};
+  return {p_->pos[b] + p_->origin, p_->ang[b], p_->vel[b], p_->spin[b]};
 }
 double DemModel::kinetic_energy() const { return p_->ke; }
 double DemModel::support_work() const { return p_->support_work; }
@@ -60,7 +61,7 @@ double DemModel::gravity_energy() const {
   const Impl& m = *p_;
   double e = 0;
   for (int b = 0; b < m.nb; ++b)
-    if (!m.support[b]) e += m.mass[b] * m.c.gravity * (m.pos[b].y() - m.dt * m.vel[b].y() - m.c0[b].y());
+    if (!m.support[b]) e += m.weight[b] * (m.pos[b].y() - m.dt * m.vel[b].y() - m.c0[b].y());
   return e;
 }
 double DemModel::load_work() const {
@@ -79,7 +80,7 @@ double DemModel::energy_input() const {
   const Impl& m = *p_;
   double w = m.support_work;
   for (int b = 0; b < m.nb; ++b)
-    if (!m.support[b]) w -= m.mass[b] * m.c.gravity * (m.pos[b].y() - m.c0[b].y());
+    if (!m.support[b]) w -= m.weight[b] * (m.pos[b].y() - m.c0[b].y());
   for (size_t l = 0; l < m.load_block.size(); ++l) {
     const int b = m.load_block[l];
     const Vec2 x = m.pos[b] + rotate(m.load_r[l], std::cos(m.ang[b]), std::sin(m.ang[b]));
@@ -152,7 +153,7 @@ std::vector<double> DemModel::corner_gaps(const std::vector<Interface>& joints) 
     const double ci = std::cos(m.ang[J.i]), si = std::sin(m.ang[J.i]), cj = std::cos(m.ang[J.j]), sj = std::sin(m.ang[J.j]);
     const Vec2 ni = rotate(J.normal, ci, si), nj = rotate(-J.normal, cj, sj);
     for (int corner = 0; corner < 2; ++corner) {
-      const Vec2 P = corner == 0 ? J.a : J.b;
+      const Vec2 P = (corner == 0 ? J.a : J.b) - m.origin;  // joints come in the world frame
       const Vec2 pi = m.pos[J.i] + rotate(P - m.c0[J.i], ci, si), pj = m.pos[J.j] + rotate(P - m.c0[J.j], cj, sj);
       g.push_back(corner_gap(pi, ni, pj, nj));
     }
@@ -165,7 +166,9 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
   StepRecord r;
   r.d = m.d_now;
   for (int b = 0; b < m.nb; ++b) r.poses.push_back({m.pos[b].x(), m.pos[b].y(), m.ang[b]});
+  // Energy in the model's frame (it is relative to the initial configuration), poses in the world's.
   r.energy = potential_energy(m.c, r.poses);
+  for (Pose& p : r.poses) p.x += m.origin.x(), p.y += m.origin.y();
 
   // Reactions: what the structure receives from each support, moments about the support's
   // `about` point where it moves (its centroid when fixed), current configuration.
@@ -229,7 +232,7 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
       f.joint = static_cast<int>(k);
       f.normal = acc[k].n;
       f.shear = acc[k].s;
-      f.point = acc[k].np / acc[k].n;
+      f.point = acc[k].np / acc[k].n + m.origin;
       Vec2 t;
       joint_frame(J, f.n, t);
       r.forces.push_back(f);

@@ -18,6 +18,14 @@ constexpr long long kCheckEvery = 64;
 // every transient. Three rises in a row, above the threshold, make a collapse.
 constexpr long long kFirstWindow = 1024;
 constexpr int kRisingWindows = 3;
+// The hold's verdict at its cap (hold()). A motion that still covers at least half the ground
+// over the cap's second half that it covered over the first, while its unbalanced force does
+// not fall, is not dying out on the time scale of the cap (an exponential decay would need a
+// time constant above 0.72 cap): creep. One that is dying out gets up to three more caps (4.2 of
+// the slowest such time constants: its motion falls below 2% of what it was), so a slow
+// settling is not mistaken for a failure.
+constexpr double kCreepRatio = 0.5;
+constexpr int kExtensions = 3;
 
 // The servo's rates and the hold's first window are set in cycles at the default time-step
 // factor and kept in model time at any other: the time step is a numerical setting, so halving it
@@ -84,10 +92,18 @@ double largest_move(const DemModel& m, const Case& c, const std::vector<Vec2>& f
   return d;
 }
 
+double largest_distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b, const Case& c) {
+  double d = 0;
+  for (size_t k = 0; k < c.blocks.size(); ++k)
+    if (!c.blocks[k].support) d = std::max(d, (a[k] - b[k]).norm());
+  return d;
+}
+
 const char* hold_end_name(HoldEnd e) {
   switch (e) {
     case HoldEnd::equilibrium: return "equilibrium";
     case HoldEnd::collapse: return "collapse";
+    case HoldEnd::creep: return "creep";
     case HoldEnd::undecided: return "undecided";
   }
   return "?";
@@ -100,17 +116,17 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
   double window_peak = 0, last_peak = INFINITY;
   long long window_end = std::max(1LL, std::llround(static_cast<double>(kFirstWindow) / default_cycles_per_cycle(s)));
   int rising = 0;
-  std::vector<Vec2> mid;  // positions half way through the cap
-  double first_half = 0;  // m, the largest travel over the first half of the cap
+  // The current cap: its end, and the positions half way through it.
+  long long cap_end = budget;
+  int extensions = 0;
+  std::vector<Vec2> cap_start = start, mid;
+  double unbalanced[2] = {0, 0};  // sums of the unbalanced-force ratio over the cap's two halves
   // Kinetic damping: stop every free block when the kinetic energy passes a peak, so the hold
   // relaxes towards the nearest equilibrium without momentum (HoldDamping).
   const bool kinetic = s.hold_damping == HoldDamping::kinetic;
   double prev_ke = 0;
-  for (long long k = 0; k < budget; ++k) {
-    if (k == budget / 2) {
-      mid = positions(m, c);
-      first_half = largest_move(m, c, start);
-    }
+  for (long long k = 0; k < cap_end; ++k) {
+    if (k == cap_end - budget + budget / 2) mid = positions(m, c);
     m.cycle();
     ++o.cycles;
     if (kinetic) {
@@ -123,6 +139,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
       }
     }
     check_finite(m);
+    unbalanced[k >= cap_end - budget + budget / 2] += m.unbalanced_ratio();
     const bool at_rest = m.unbalanced_ratio() < s.equilibrium_tolerance && m.max_speed() < s.velocity_tolerance;
     if (at_rest && k + 1 >= std::min(watch, budget)) {
       o.end = HoldEnd::equilibrium;
@@ -146,14 +163,37 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
         break;
       }
     }
+    if (k + 1 < cap_end) continue;
+    // At the cap: how the motion goes on. A structure settling towards an equilibrium travels
+    // less over the cap's second half than over its first (an exponential decay with time
+    // constant tau gives the ratio exp(-cap / (2 tau))), or, where it settles too slowly for the
+    // cap to show that, it is pushed less and less as it approaches the equilibrium: its
+    // unbalanced force falls (a block sinking onto soft joints under damping 0.9999 travels
+    // faster in the second half of a cap of two periods, while its unbalanced force falls by 2%).
+    // A mechanism past its limit point keeps its pace or speeds up, and nothing takes up its
+    // unbalanced force.
+    o.first_half = largest_distance(cap_start, mid, c);
+    o.second_half = largest_move(m, c, mid);
+    const double drift = largest_move(m, c, start);
+    const bool pushed_as_hard = unbalanced[1] >= unbalanced[0];  // the halves have equal lengths, to a cycle
+    const bool creeping = o.second_half > lim.creep_floor && o.second_half >= kCreepRatio * o.first_half && pushed_as_hard;
+    unbalanced[0] = unbalanced[1] = 0;
+    if (drift > 0.1 * lim.collapse_drift && o.second_half >= o.first_half) {
+      // Collapsing more slowly than the cap (on the settlement cathedral, a block 0.47 m from its
+      // start still moving at 0.13 m/s after 30 s).
+      o.end = HoldEnd::collapse;
+    } else if (creeping) {
+      o.end = HoldEnd::creep;
+    } else if (extensions < kExtensions) {
+      // Still dying out: one more cap, from here.
+      ++extensions;
+      cap_end += budget;
+      cap_start = positions(m, c);
+      continue;
+    }
+    break;
   }
   o.drift = largest_move(m, c, start);
-  // At the cap: a structure settling towards equilibrium, however slowly, travels less in the
-  // second half of the cap than in the first; one that travels at least as far, and has gone
-  // more than a tenth of the collapse drift, is collapsing more slowly than the cap (on the
-  // settlement cathedral, a block 0.47 m from its start still moving at 0.13 m/s after 30 s).
-  if (o.end == HoldEnd::undecided && !mid.empty() && o.drift > 0.1 * lim.collapse_drift && largest_move(m, c, mid) >= first_half)
-    o.end = HoldEnd::collapse;
   o.time = static_cast<double>(o.cycles) * m.dt();
   return o;
 }
@@ -190,9 +230,15 @@ MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, do
   // floor bounds the move's length by the hold cap. The supports also brake at the servo's own
   // rate towards the end, so they stop without a shock: a block near its friction limit on a
   // support that stops at once slips (the tilting block slid 1.5 degrees early).
+  //
+  // The rates are relative (0.2% up, 2% down per cycle), so the supports' acceleration grows with
+  // the speed and as the time step shrinks, and a structure on an accelerating support feels it
+  // as a tilt: the servo's acceleration is also capped at lim.move_accel, a hundredth of gravity
+  // (dem_run's kMoveAccel has the measurements).
   const double floor = (d1 - d0) / s.hold_time;
   const double per = default_cycles_per_cycle(s);
   const double kUp = std::pow(1.002, per), kDown = std::pow(0.98, per);
+  const double dv = lim.move_accel * dt;  // the largest change of the speed per cycle
   double v = std::max(start_speed, floor), d = d0;
   while (d < d1) {
     d = std::min(d1, d + v * dt);
@@ -201,9 +247,10 @@ MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, do
     ++o.cycles;
     check_finite(m);
     if (collapsed(o.cycles)) break;
-    // Braking from v at kDown per cycle travels v dt / (1 - kDown).
-    const bool brake = d1 - d < v * dt / (1 - kDown);
-    v = !brake && m.max_kinetic_per_weight() < ke_height ? v * kUp : std::max(floor, v * kDown);
+    // Braking from v at kDown per cycle travels v dt / (1 - kDown); by dv per cycle, about
+    // v (v + dv) dt / (2 dv).
+    const bool brake = d1 - d < std::max(v * dt / (1 - kDown), v * (v + dv) * dt / (2 * dv));
+    v = !brake && m.max_kinetic_per_weight() < ke_height ? std::min(v * kUp, v + dv) : std::max(floor, std::max(v * kDown, v - dv));
   }
   o.speed = v;
   return o;

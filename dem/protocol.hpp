@@ -14,7 +14,12 @@ namespace masonry::dem {
 enum class HoldEnd {
   equilibrium,  // unbalanced-force ratio and block speeds below their tolerances
   collapse,     // a block drifted past collapse_drift, or the kinetic energy kept growing
-  undecided,    // the hold cap came first: neither settled nor ran away
+  // The cap came first and the structure was still moving without slowing down: over the cap's
+  // second half it travelled at least kCreepRatio of what it travelled over the first (see
+  // hold()). No equilibrium within reach: at the capacity of a structure, the growth of the
+  // collapse mode tends to zero, and this is how a hold just past it ends.
+  creep,
+  undecided,    // the cap came first while the motion was still dying out (after kExtensions more caps)
 };
 const char* hold_end_name(HoldEnd e);
 
@@ -25,14 +30,23 @@ struct Limits {
   // beyond it the structure collapsed during the move (a slow move can carry a whole toppling).
   double move_drift = INFINITY;
   double energy_floor = 0;    // J, floor of the blow-up guard
+  // The move's largest acceleration of the path parameter, m/s^2 per m/m of travel (d's units
+  // per s^2): the servo never speeds the supports up or brakes them faster (see move()).
+  double move_accel = INFINITY;
   // J: kinetic energy above which, growing over consecutive windows of a hold, the structure is
   // running away (infinite: only the drift decides, as for the settling at d = 0).
   double ke_collapse = 0;
+  // m: the least travel over half a cap that counts as motion in the hold's verdict at the cap
+  // (below it a creep is not told from round-off and the last vibrations).
+  double creep_floor = 0;
 };
 
 struct HoldOutcome {
   HoldEnd end = HoldEnd::undecided;
   double drift = 0;  // m, largest block displacement since the hold began
+  // At the cap (creep, undecided): the largest block travel over the last cap's first and second
+  // halves, m (0 for a hold that ended before its cap).
+  double first_half = 0, second_half = 0;
   long long cycles = 0;
   double time = 0;   // s of model time
 };
@@ -40,8 +54,10 @@ struct HoldOutcome {
 // Free blocks' centroids, and the largest distance a free block has moved from them, m.
 std::vector<Vec2> positions(const DemModel& m, const Case& c);
 double largest_move(const DemModel& m, const Case& c, const std::vector<Vec2>& from);
+// The largest distance between two sets of the free blocks' centroids, m.
+double largest_distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b, const Case& c);
 
-// Cycles with the supports where they are until one of the three ends. Throws
+// Cycles with the supports where they are until one of the ends. Throws
 // std::runtime_error when the state turns non-finite or the energy balance is broken. With
 // `watch` > 0 an equilibrium reached before `watch` cycles (or the cap) does not end the hold:
 // the collapse criteria go on being checked, and only an equilibrium after that ends it. A

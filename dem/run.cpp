@@ -27,6 +27,22 @@ double support_travel_per_d(const Case& c) {
   return v > 0 ? v : 1.0;
 }
 
+// The servo's largest acceleration of a point carried by the supports, over gravity (dem::move):
+// a hundredth of gravity at the farthest point of the scene a support could carry (its
+// translation plus its rotation over the scene size, per unit of d). A structure on an
+// accelerating support feels it as a tilt of a / g, so near a toppling limit its capacity moves
+// by that much, and the servo's relative rates (0.2% up, 2% down per cycle, chattering about the
+// kinetic-energy target) accelerated the supports at v x 0.02 / dt: up to 1.5 g at the top of a
+// stack of four blocks on a turning slab (the stack rocked off one corner in the first move,
+// its top block walked 7.7-9 mm downhill by 0.24 rad, and it toppled 0.005 rad, 2%, before
+// atan(b/H)), 0.34 g on the pointed arch, 1.6 g at the cathedral's settling pier, 90 g with joints
+// stiff against the weights (the tilting block thrown off its slab at 1 degree). With the cap:
+// the stack within 0.2% of atan(b/H), its top block 1 mm off; the pointed arch's capacity the
+// same to 1e-15 m in 13% fewer cycles (its holds start calmer). A move of the paper's 1 mm then
+// takes at least 2 sqrt(step / (0.01 g)) = 0.2 s, about what the kinetic-energy target already
+// made it take.
+constexpr double kMoveAccel = 0.01;
+
 // One attempt to reach d1 from an equilibrium at d0: move, then hold.
 struct Attempt {
   HoldOutcome hold;
@@ -96,6 +112,7 @@ void record_settings(Run& u) {
                   {"timestep_factor", s.timestep_factor},
                   {"critical_dt", u.m.critical_dt()},
                   {"dt", u.m.dt()},
+                  {"mass_scale", u.m.mass_scale()},
                   {"equilibrium_tolerance", s.equilibrium_tolerance},
                   {"velocity_tolerance", s.velocity_tolerance},
                   {"hold_time", s.hold_time},
@@ -134,6 +151,7 @@ void emit(Run& u, const HoldOutcome& h, long long cycles, long long move_cycles,
   x.drift = h.drift;
   x.contact_points = u.m.contact_points();
   x.max_overlap = u.m.max_overlap();
+  if (h.end == HoldEnd::creep || h.end == HoldEnd::undecided) x.cap_travel = CapTravel{h.first_half, h.second_half};
   require_finite(rec);
   u.r.steps.push_back(std::move(rec));
   u.r.timing.cycles = u.m.cycles();
@@ -188,11 +206,19 @@ bool settle(Run& u) {
   if (h0.end == HoldEnd::equilibrium) u.r.capacity = 0;
   emit(u, h0, h0.cycles, 0, false, 0.0);  // absolute gaps: the settled crack pattern
   if (h0.end != HoldEnd::equilibrium) {
+    // A creep at d = 0 is not taken for a collapse: with no equilibrium below it to bracket
+    // against, nothing locates a limit point.
     u.r.collapsed = h0.end == HoldEnd::collapse;
     u.r.status = u.r.collapsed ? RunStatus::collapse : RunStatus::undecided;
-    if (!u.r.collapsed)
-      u.r.message = "the initial configuration neither settled nor ran away within the hold cap (" + std::to_string(u.s.hold_time) +
-                    " s): no capacity";
+    std::ostringstream msg;
+    if (h0.end == HoldEnd::creep)
+      msg << "the initial configuration neither settled nor ran away within the hold cap (" << u.s.hold_time
+          << " s): it creeps without slowing down (" << h0.second_half << " m over the last half cap after " << h0.first_half
+          << " m): no capacity";
+    else if (!u.r.collapsed)
+      msg << "the initial configuration neither settled nor ran away within the hold cap (" << u.s.hold_time
+          << " s) and three more, its motion still dying out: no capacity; a longer dem.hold_time may settle it";
+    u.r.message = msg.str();
     return false;
   }
   u.settled_gaps = u.m.corner_gaps(u.joints);
@@ -278,18 +304,32 @@ void close(Run& u, const Failure& f) {
   u.m.restore(f.state);
   emit(u, f.attempt, u.bracket > 0);
   u.r.collapse_bracket = CollapseBracket{u.d_eq, f.d, f.d - u.d_eq, f.trials};
-  // A collapse shown anywhere beyond the capacity makes the run a collapse; the bracket's upper
-  // end may still be a hold that had not decided when the cap came.
+  // A collapse shown anywhere beyond the capacity makes the run a collapse. So does a limit point
+  // located within the bracket: the last equilibrium lies within the bracket's width of a state
+  // that creeps without slowing down (dem::HoldEnd::creep), which is how a structure just past
+  // its limit point moves, since the growth of its collapse mode tends to zero there (the
+  // pointed arch's limit, say, is reached with no runaway to see). A located collapse needs no
+  // runaway, only that no equilibrium was found at the bracket's upper end.
   bool any_collapse = false;
   for (const auto& t : f.trials) any_collapse = any_collapse || t.end == "collapse";
-  u.r.collapsed = any_collapse;
+  const double width = f.d - u.d_eq;
+  const bool limit_point = f.attempt.hold.end == HoldEnd::creep && width <= (u.bracket > 0 ? u.bracket : u.s.step) * (1 + 1e-9);
+  u.r.collapsed = any_collapse || limit_point;
   u.r.status = u.r.collapsed ? RunStatus::collapse : RunStatus::undecided;
-  if (!u.r.collapsed) {
-    std::ostringstream msg;
-    msg << "the hold at d = " << f.d << " m neither settled nor ran away within the hold cap (" << u.s.hold_time
-        << " s): the capacity " << u.d_eq << " m is the last equilibrium, not a located collapse";
-    u.r.message = msg.str();
+  std::ostringstream msg;
+  if (!any_collapse && limit_point) {
+    msg << "limit point: no equilibrium at d = " << f.d << " m, which creeps without slowing down (" << f.attempt.hold.second_half
+        << " m over the last half cap after " << f.attempt.hold.first_half << " m), " << width
+        << " m past the last equilibrium";
+    u.r.limit_point = true;
+  } else if (!u.r.collapsed) {
+    msg << "the hold at d = " << f.d << " m neither settled nor ran away within the hold cap (" << u.s.hold_time << " s"
+        << (f.attempt.hold.end == HoldEnd::creep ? "): it creeps without slowing down, but the collapse bracket ["
+                                                  : ") and three more, its motion still dying out; the collapse bracket [")
+        << u.d_eq << ", " << f.d << "] m is wider than its tolerance: the capacity " << u.d_eq
+        << " m is the last equilibrium, not a located collapse";
   }
+  u.r.message = msg.str();
 }
 
 }  // namespace
@@ -306,7 +346,9 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   // snaps the pointed arch by 4 mm (0.2% of its size) to a new equilibrium near d = 0.09 m.
   u.lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
   u.lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
+  u.lim.creep_floor = std::max(0.01 * c.prd.contact_tolerance, 1e-9 * scene_size(c));
   u.ke_height_per_d = s.kinetic_ratio * support_travel_per_d(c);
+  u.lim.move_accel = kMoveAccel * kReferenceGravity / support_travel_per_d(c);
   u.bracket = s.bracket_fraction * s.step;
   record_settings(u);
   try {

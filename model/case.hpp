@@ -15,6 +15,10 @@ namespace masonry {
 
 using Vec2 = Eigen::Vector2d;
 
+// m: how far from the origin a vertex, load point or pivot may lie (README, "Ranges"): 100 km,
+// far beyond any structure, near enough that every derived quantity keeps its digits.
+inline constexpr double kMaxCoordinate = 1e5;
+
 // Bad input: the message is one line naming the file, the block and the field.
 struct CaseError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -94,7 +98,7 @@ struct DemOptions {
   double damping = 0.8;              // local non-viscous damping coefficient alpha in [0, 1)
   // dt = timestep_factor * dt_crit, dt_crit = 2 / omega_bound (see DemModel::critical_dt);
   // factors above 1 are refused.
-  double timestep_factor = 0.8;
+  double timestep_factor = 1.0;
   double equilibrium_tolerance = 1e-4;  // largest unbalanced force / block weight at equilibrium
   double velocity_tolerance = 1e-5;     // largest block speed at equilibrium, m/s
   // Model-time cap of one hold, s: a hold ends on equilibrium or on evidence of collapse; one that
@@ -133,8 +137,9 @@ struct DemOptions {
 };
 
 // Refuses (CaseError, naming `source`, "dem" and the field) settings outside their ranges: the
-// loader's own check, for settings a study derives in code.
-void check_dem_options(const DemOptions& d, const std::string& source);
+// loader's own check, for settings a study derives in code. A time-step factor above 1 only
+// where `allow_unstable_timestep` (the DEM's blow-up tests).
+void check_dem_options(const DemOptions& d, const std::string& source, bool allow_unstable_timestep = false);
 
 struct Case {
   std::string source;  // file name, for messages

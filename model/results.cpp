@@ -90,6 +90,7 @@ void write_hold(const DemHold& h, ojson& js) {
   js["drift"] = json_number(h.drift);
   js["contact_points"] = h.contact_points;
   js["max_overlap"] = json_number(h.max_overlap);
+  if (h.cap_travel) js["cap_travel"] = {{"first_half", json_number(h.cap_travel->first_half)}, {"second_half", json_number(h.cap_travel->second_half)}};
 }
 
 ojson event_json(const Event& e, const RunResult& r, const Case& c) {
@@ -131,8 +132,19 @@ ojson to_json(const RunResult& r, const Case& c) {
   j["version"] = r.version.empty() ? version_text() : r.version;
   j["method"] = r.method;
   j["case"] = r.case_name;
-  j["capacity"] = json_number(r.capacity);
-  j["stable_steps"] = r.stable_steps;
+  // A run still going is written as its records stand: a solver hands its results out as it
+  // records a step, and may count that step only after (a DEM run killed there had written
+  // capacity 0.028 m beside its equilibrium record at 0.029 m).
+  double capacity = r.capacity;
+  int stable_steps = r.stable_steps;
+  if (r.status == RunStatus::running)
+    for (const StepRecord& s : r.steps)
+      if (is_equilibrium(r, s) && s.d > capacity) {
+        capacity = s.d;
+        ++stable_steps;
+      }
+  j["capacity"] = json_number(capacity);
+  j["stable_steps"] = stable_steps;
   j["collapsed"] = r.collapsed;
   j["stopped"] = status_name(r.status);
   if (!r.message.empty()) j["message"] = r.message;
@@ -210,6 +222,7 @@ ojson to_json(const RunResult& r, const Case& c) {
   }
   if (r.wall_s) j["wall_s"] = json_number(*r.wall_s);
   if (r.collapse_bracket) j["collapse_bracket"] = bracket_json(*r.collapse_bracket);
+  if (r.limit_point) j["limit_point"] = true;
   if (!r.unconfirmed_failures.empty()) {
     ojson u = ojson::array();
     for (const UnconfirmedFailure& f : r.unconfirmed_failures)
@@ -234,12 +247,20 @@ ojson to_json(const RunResult& r, const Case& c) {
   return j;
 }
 
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return o + "\"";
+}
+
 std::string steps_csv(const RunResult& r) {
   std::ostringstream o;
   o.precision(12);
   o << "step,d_m,energy_J,open_corners,cracked_joints";
   if (!r.steps.empty())
-    for (const Reaction& x : r.steps.front().reactions) o << ",Fx_" << x.support << "_N,Fy_" << x.support << "_N";
+    for (const Reaction& x : r.steps.front().reactions)
+      o << "," << csv_field("Fx_" + x.support + "_N") << "," << csv_field("Fy_" + x.support + "_N");
   o << "\n";
   for (const StepRecord& s : r.steps) {
     o << s.index << "," << s.d << "," << s.energy << "," << s.open_corners.size() << "," << s.cracked.size();

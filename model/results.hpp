@@ -82,8 +82,13 @@ struct HeldCorner {
 
 // The DEM's hold that ended a record (dem/README.md, "The quasi-static protocol"): how it ended
 // and what it cost. The names are the fields results.json writes in the step.
+// What a hold that did not settle travelled over the first and the second half of its last cap
+// (dem/README.md, "Creep, undecided and the limit point"): m, the largest block displacement.
+struct CapTravel {
+  double first_half = 0.0, second_half = 0.0;
+};
 struct DemHold {
-  std::string hold_end;           // "equilibrium", "collapse" or "undecided"
+  std::string hold_end;           // "equilibrium", "collapse", "creep" or "undecided"
   bool bracket = false;           // a trial of the collapse bracket
   long long cycles = 0;           // of the move and the hold
   long long move_cycles = 0;      // of the move
@@ -94,6 +99,7 @@ struct DemHold {
   double drift = 0.0;             // m, largest block displacement since the hold began
   long long contact_points = 0;
   double max_overlap = 0.0;       // m
+  std::optional<CapTravel> cap_travel;  // a hold that ended "creep" or "undecided"
 };
 
 struct StepRecord {
@@ -120,8 +126,8 @@ struct JointInfo {
 };
 
 struct Timing {
-  double total_s = 0.0;  // PRD: wall time of the run without I/O; DEM: the run's thread CPU time
-  double lp_s = 0.0;     // PRD: time in GLPK
+  double total_s = 0.0;  // the run's thread CPU time without I/O (PRD and DEM)
+  double lp_s = 0.0;     // PRD: CPU time in GLPK
   long long lp_solves = 0;
   // PRD (event-driven): evaluations of an LP's final basis at another configuration (where a
   // planned move would end) without simplex iterations, one factorisation each; their time is
@@ -174,7 +180,7 @@ struct Collapse {
 // and every trial that narrowed it.
 struct BracketTrial {
   double d = 0.0;         // m
-  std::string end;        // how its hold ended: "equilibrium", "collapse" or "undecided"
+  std::string end;        // how its hold ended: "equilibrium", "collapse", "creep" or "undecided"
   long long cycles = 0;
   bool confirm = false;   // the confirming hold of DemSettings::confirm_collapse
 };
@@ -206,6 +212,9 @@ struct RunResult {
   std::optional<Collapse> collapse;          // PRD, a run that collapsed
   std::optional<double> wall_s;              // DEM: wall time of the run without I/O, s
   std::optional<CollapseBracket> collapse_bracket;   // DEM, a located failure
+  // DEM: the collapse was located as a limit point (no equilibrium at the bracket's upper end,
+  // which creeps without slowing down; no runaway seen). Written only when true.
+  bool limit_point = false;
   std::vector<UnconfirmedFailure> unconfirmed_failures;  // DEM (confirm_collapse)
 };
 
@@ -241,6 +250,9 @@ nlohmann::ordered_json prd_on_run_json(const PrdOnRun& p);
 nlohmann::ordered_json mechanism_json(const Mechanism& m, const Case& c);
 
 nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
+// A CSV field as RFC 4180 writes it: quoted, quotes doubled, where it holds a comma, a quote or a
+// line break (an id may hold any of them), so every row of a file has the header's columns.
+std::string csv_field(const std::string& s);
 // One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.
 std::string steps_csv(const RunResult& r);
 // Writes DIR/results.json and DIR/steps.csv, each through a temporary file and a rename, so a

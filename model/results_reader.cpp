@@ -104,7 +104,8 @@ struct Reader : FieldReader<std::runtime_error, ojson> {
   }
   std::string hold_end(const ojson& v, const std::string& where, const std::string& field) const {
     const std::string s = text(v, where, field);
-    if (s != "equilibrium" && s != "collapse" && s != "undecided") fail(where, "field '" + field + "' must be equilibrium, collapse or undecided");
+    if (s != "equilibrium" && s != "collapse" && s != "creep" && s != "undecided")
+      fail(where, "field '" + field + "' must be equilibrium, collapse, creep or undecided");
     return s;
   }
 };
@@ -147,7 +148,7 @@ std::vector<JointInfo> read_joints(const Reader& in, const ojson& joints) {
 StepRecord read_step(const Reader& in, const ojson& js, const std::string& w) {
   in.only(js, w, {"step", "d", "energy", "open_corners", "cracked", "reactions", "poses", "forces", "settled", "hold_end", "bracket",
                   "cycles", "move_cycles", "lag", "hold_time", "unbalanced_ratio", "max_speed", "drift", "contact_points",
-                  "max_overlap", "lp_primal", "lp_dual", "held_corners", "sliding"});
+                  "max_overlap", "cap_travel", "lp_primal", "lp_dual", "held_corners", "sliding"});
   StepRecord s;
   const long long index = in.integer(in.need(js, w, "step"), w, "step");
   if (index < 0 || index > std::numeric_limits<int>::max()) in.fail(w, "field 'step' must be a step index, 0 or more");
@@ -205,8 +206,15 @@ StepRecord read_step(const Reader& in, const ojson& js, const std::string& w) {
     h.drift = in.maybe(js, w, "drift", kNaN);
     h.contact_points = in.integer(js, w, "contact_points", 0);
     h.max_overlap = in.maybe(js, w, "max_overlap", kNaN);
+    if (js.contains("cap_travel")) {
+      const std::string wc = member(w, "cap_travel");
+      const ojson& x = js["cap_travel"];
+      in.only(x, wc, {"first_half", "second_half"});
+      h.cap_travel = CapTravel{in.maybe(in.need(x, wc, "first_half"), wc, "first_half"), in.maybe(in.need(x, wc, "second_half"), wc, "second_half")};
+    }
   } else {
-    for (const char* k : {"bracket", "cycles", "move_cycles", "lag", "hold_time", "unbalanced_ratio", "max_speed", "drift", "contact_points", "max_overlap"})
+    for (const char* k : {"bracket", "cycles", "move_cycles", "lag", "hold_time", "unbalanced_ratio", "max_speed", "drift", "contact_points",
+                          "max_overlap", "cap_travel"})
       if (js.contains(k)) in.fail(w, std::string("field '") + k + "' is one of the DEM hold's fields, which go with 'hold_end'");
   }
   if (js.contains("lp_primal") != js.contains("lp_dual")) in.fail(w, "fields 'lp_primal' and 'lp_dual' go together");
@@ -309,6 +317,7 @@ void read_dem_fields(const Reader& in, const ojson& j, RunResult& r) {
     }
     r.collapse_bracket = std::move(b);
   }
+  r.limit_point = in.boolean(j, "results", "limit_point", false);
   const ojson& un = in.array(j, "results", "unconfirmed_failures");
   for (size_t k = 0; k < un.size(); ++k) {
     const std::string w = item("unconfirmed_failures", k);
@@ -373,7 +382,7 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
   const std::string w = "results";
   in.only(j, w, {"format", "units", "version", "method", "case", "capacity", "stable_steps", "collapsed", "stopped", "message",
                  "total_weight", "settings", "timing", "blocks", "joints", "steps", "events", "collapse", "wall_s", "collapse_bracket",
-                 "unconfirmed_failures", "sliding"});
+                 "limit_point", "unconfirmed_failures", "sliding"});
   const std::string format = in.text(in.need(j, w, "format"), w, "format");
   if (format != "masonry-results/1") in.fail(w, "field 'format' must be \"masonry-results/1\", not \"" + printable(format) + "\"");
   RunResult r;

@@ -44,6 +44,13 @@ Model build_model(const Case& c, double tol) {
   }
   m.cen = m.c0;
   m.angle.assign(nb, 0.0);
+  // The LP's force unit: the largest generalised load at the start, so that the objective's
+  // coefficients are at most 1 whatever the weights' scale. GLPK's optimality tolerances are
+  // absolute below 1 (a reduced cost under 1e-7 is zero): in newtons, a block of density 1e-3
+  // under gravity 1e-6 weighs 1e-9 N and never topples (issue 33).
+  double largest = 0;
+  for (double f : generalised_loads(m)) largest = std::max(largest, std::abs(f));
+  m.force_unit = largest > 0 && std::isfinite(largest) ? largest : 1.0;
   for (size_t k = 0; k < m.joints.size(); ++k) {
     m.ends.push_back({static_cast<int>(k), 0, m.joints[k].a, m.joints[k].a});
     m.ends.push_back({static_cast<int>(k), 1, m.joints[k].b, m.joints[k].b});
@@ -86,13 +93,14 @@ void update_lp(Model& m, double h, double scale, double h_open) {
     throw std::logic_error(std::string("prd: invalid step for the LP (m): ").append(std::to_string(h)));
   glp_prob* lp = m.lp.get();
   const std::vector<double> f = generalised_loads(m);
-  for (int j = 1; j <= m.ncols; ++j) glp_set_obj_coef(lp, j, -f[j]);
+  for (int j = 1; j <= m.ncols; ++j) glp_set_obj_coef(lp, j, -f[j] / m.force_unit);
   std::vector<Increment> inc(m.c->blocks.size());
   for (size_t b = 0; b < inc.size(); ++b)
     if (m.col[b] < 0) inc[b] = support_increment(m, static_cast<int>(b), h);
 
   int ind[7];
   double val[7];
+  if (m.row_coef.empty()) m.row_coef.assign(7 * 2 * m.ends.size(), -1.0);  // count -1: not written yet
   for (size_t e = 0; e < m.ends.size(); ++e) {
     const Endpoint& ep = m.ends[e];
     const Interface& jt = m.joints[ep.joint];
@@ -119,7 +127,16 @@ void update_lp(Model& m, double h, double scale, double h_open) {
         }
       }
       const int row = 2 * static_cast<int>(e) + 1 + r;
-      glp_set_mat_row(lp, row, cnt, ind, val);
+      // GLPK rebuilds a row it is given and drops the basis factorisation: rows whose
+      // coefficients are those it holds (the blocks of both sides did not move) are left alone.
+      double* held = &m.row_coef[7 * (row - 1)];
+      bool same = held[0] == cnt;
+      for (int k = 1; same && k <= cnt; ++k) same = held[k] == val[k];
+      if (!same) {
+        glp_set_mat_row(lp, row, cnt, ind, val);
+        held[0] = cnt;
+        for (int k = 1; k <= cnt; ++k) held[k] = val[k];
+      }
       if (r == 0) {
         double gap = (pj - pi).dot(n);
         if (!ep.closed && h_open > 0 && h_open < h) gap *= h / h_open;
@@ -161,7 +178,22 @@ LpStatus solve(Model& m) {
     const int st = glp_get_status(lp);
     return rc == 0 && (st == GLP_OPT || st == GLP_UNBND || st == GLP_NOFEAS);
   };
-  const auto t0 = Clock::now();
+  const auto t0 = cpu_now();
+  // A fresh LP: GLPK's standard basis (every row slack basic) makes the simplex bring each
+  // block's columns in one pivot at a time, about two pivots per block, each costing in
+  // proportion to the rows, so the first LP grows with the square of the blocks. Bixby's
+  // advanced basis starts with most columns basic and halves the pivots (a wall of 4000 blocks:
+  // 8000 pivots, 3.4 s, became 4040, 1.9 s; the first step of a run on a 2,049-block wall:
+  // 13.8 s of CPU became 4.0 s, a 497-block wall's 0.56 s 0.13 s); the growth stays quadratic,
+  // which is the simplex's. Runs start from it from kAdvancedBasisBlocks free blocks up only: a
+  // statically indeterminate structure has many admissible force states, the start decides
+  // which one the LP's duals are, and the standard scenes (at most 276 blocks) keep theirs (the
+  // cathedral's aisles: 1.3% of the weight apart; mechanisms and capacities are the same from
+  // either start, tests/prd/first_basis_test.cpp).
+  const bool advanced = m.first_basis == FirstBasis::advanced ||
+                        (m.first_basis == FirstBasis::by_size && m.ncols >= 3 * kAdvancedBasisBlocks);
+  if (m.fresh && advanced) quiet_adv_basis(lp);
+  m.fresh = false;
   int rc = glp_simplex(lp, &parm);
   if (!conclusive(rc)) {
     quiet_adv_basis(lp);
@@ -182,10 +214,9 @@ LpStatus solve(Model& m) {
   }
 }
 
-void quiet_adv_basis(Model& m) { quiet_adv_basis(m.lp.get()); }
-double objective(const Model& m) { return glp_get_obj_val(m.lp.get()); }
+double objective(const Model& m) { return glp_get_obj_val(m.lp.get()) * m.force_unit; }
 double col_value(const Model& m, int j) { return glp_get_col_prim(m.lp.get(), j); }
-double corner_force(const Model& m, size_t e) { return glp_get_row_dual(m.lp.get(), 2 * static_cast<int>(e) + 1); }
+double corner_force(const Model& m, size_t e) { return glp_get_row_dual(m.lp.get(), 2 * static_cast<int>(e) + 1) * m.force_unit; }
 double corner_slack(const Model& m, size_t e) {
   const int row = 2 * static_cast<int>(e) + 1;
   return glp_get_row_prim(m.lp.get(), row) - glp_get_row_lb(m.lp.get(), row);
@@ -211,8 +242,8 @@ void read_forces(const Model& m, StepRecord& rec) {
     for (int corner = 0; corner < 2; ++corner) {
       const size_t e = 2 * k + corner;
       const Endpoint& ep = m.ends[e];
-      const double fn = glp_get_row_dual(lp, 2 * static_cast<int>(e) + 1);
-      const double ft = m.sliding_row(e) ? glp_get_row_dual(lp, 2 * static_cast<int>(e) + 2) : 0.0;
+      const double fn = corner_force(m, e);
+      const double ft = m.sliding_row(e) ? glp_get_row_dual(lp, 2 * static_cast<int>(e) + 2) * m.force_unit : 0.0;
       n = m.normal(ep);
       const Vec2 p = 0.5 * (m.on_i(ep) + m.on_j(ep));
       N += fn;
@@ -286,7 +317,7 @@ void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
     if (type == GLP_FR) continue;
     dual += glp_get_row_dual(lp, r) * glp_get_row_lb(lp, r);
   }
-  rec.lp = LpOptima{glp_get_obj_val(lp) * scale, dual * scale};
+  rec.lp = LpOptima{objective(m) * scale, dual * m.force_unit * scale};
 }
 
 
@@ -317,7 +348,7 @@ int evaluate_basis(Model& m, const Accepted& a, double h, double h_open) {
   update_lp(m, h, h, h_open);
   for (size_t i = 1; i < a.row_stat.size(); ++i) glp_set_row_stat(lp, static_cast<int>(i), a.row_stat[i]);
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_stat(lp, j, a.col_stat[j]);
-  const auto t0 = Clock::now();
+  const auto t0 = cpu_now();
   const int rc = glp_warm_up(lp);
   m.lp_s += seconds_since(t0);
   ++m.basis_evaluations;

@@ -23,17 +23,12 @@ const char* start_offsets_name(StartOffsets o) { return o == StartOffsets::keep 
 PrdCheck prd_check(const Case& c, double contact_tolerance) {
   prd::install_glpk_hooks();
   Model m = build_model(c, contact_tolerance);
+  m.first_basis = FirstBasis::advanced;
   PrdCheck out;
   out.joints = joint_infos(m);
   out.total_weight = total_weight(*m.c);
   const double scale = std::max(scene_size(c), 1e-12) * 1e-3;
   update_lp(m, 0.0, scale);
-  // A fresh LP: GLPK's standard basis (every row slack basic) makes the simplex bring each
-  // block's columns in one pivot at a time, about two pivots per block, each costing in
-  // proportion to the rows, so the analysis grows with the square of the blocks. Bixby's
-  // advanced basis starts with most columns basic and halves the pivots (a wall of 4000 blocks:
-  // 8000 pivots, 3.4 s, became 4040, 1.9 s); the growth stays quadratic, which is the simplex's.
-  if (m.ncols > 0) quiet_adv_basis(m);
   const LpStatus status = m.ncols == 0 ? LpStatus::optimal : solve(m);
   out.state.poses = poses(m);
   if (status == LpStatus::optimal) {
@@ -374,6 +369,7 @@ FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, cons
   prd::install_glpk_hooks();
   if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("prd: the step must be a positive number");
   Model m = build_model(c, contact_tolerance);
+  m.first_basis = FirstBasis::advanced;
   auto name = [&](size_t e) {
     const Interface& jt = m.joints[m.ends[e].joint];
     return corner_name(c, jt.i, jt.j, m.ends[e].corner);
@@ -381,7 +377,6 @@ FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, cons
   hold_corners(m, held_closed);
   // As the run's first step: the LP for a step h, open corners (none at the start) over h.
   update_lp(m, h, h, h);
-  if (m.ncols > 0) quiet_adv_basis(m);
   FirstStep out;
   const LpStatus st = m.ncols == 0 ? LpStatus::optimal : solve(m);
   if (st == LpStatus::infeasible) throw std::runtime_error(c.source + ": the first step's LP is infeasible (the held corners cannot all stay closed)");
@@ -404,7 +399,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   if (!(s.contact_tolerance > 0)) throw std::invalid_argument("prd: the contact tolerance must be positive");
   if (!std::isfinite(s.event_tolerance) || !std::isfinite(s.max_step))
     throw std::invalid_argument("prd: the event tolerance and the largest step must be finite");
-  const auto t_start = Clock::now();
+  const auto t_start = cpu_now();
   double io_s = 0;
   RunResult r;
   r.method = "prd";
@@ -429,7 +424,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
     r.timing.basis_evaluations = w.m.basis_evaluations;
     r.timing.total_s = seconds_since(t_start) - io_s;
     if (!on_step) return;
-    const auto t0 = Clock::now();
+    const auto t0 = cpu_now();
     on_step(r);
     io_s += seconds_since(t0);
   };

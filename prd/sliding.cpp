@@ -49,7 +49,10 @@ FrictionProblem friction_problem(const Model& m) {
       p.joints_in_contact.push_back(ep.joint);
     }
   }
+  // In the LP's force unit, for GLPK's absolute tolerances (build_model); only ratios of the
+  // forces are read back.
   p.loads = generalised_loads(m);
+  for (double& f : p.loads) f /= m.force_unit;
   return p;
 }
 

@@ -4,18 +4,50 @@
 
 namespace masonry {
 
+size_t utf8_char(std::string_view s, size_t i, unsigned& cp) {
+  const unsigned char c = static_cast<unsigned char>(s[i]);
+  const size_t n = c < 0x80 ? 0 : (c >> 5) == 6 ? 1 : (c >> 4) == 14 ? 2 : (c >> 3) == 30 ? 3 : 4;
+  if (n == 4 || i + n >= s.size()) return 0;
+  cp = n == 0 ? c : c & (0x3fu >> n);
+  for (size_t k = 1; k <= n; ++k) {
+    const unsigned char t = static_cast<unsigned char>(s[i + k]);
+    if ((t >> 6) != 2) return 0;
+    cp = (cp << 6) | (t & 0x3f);
+  }
+  const bool overlong = (n == 1 && cp < 0x80) || (n == 2 && cp < 0x800) || (n == 3 && cp < 0x10000);
+  if (overlong || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return 0;
+  return n + 1;
+}
+
 std::string xml_escape(const std::string& s) {
   std::string o;
   o.reserve(s.size());
-  for (char ch : s) {
+  for (size_t i = 0; i < s.size();) {
+    const char ch = s[i];
+    unsigned cp = 0;
+    const size_t n = utf8_char(s, i, cp);
+    if (n == 0 || cp == 0xfffe || cp == 0xffff) {
+      o += "\xEF\xBF\xBD";  // U+FFFD, the replacement character
+      i += n == 0 ? 1 : n;
+      continue;
+    }
+    if (n == 1 && cp < 0x20 && ch != '\t' && ch != '\n' && ch != '\r') {
+      static const char hex[] = "0123456789abcdef";
+      o += "\\x";
+      o += hex[cp >> 4];
+      o += hex[cp & 15];
+      ++i;
+      continue;
+    }
     switch (ch) {
       case '&': o += "&amp;"; break;
       case '<': o += "&lt;"; break;
       case '>': o += "&gt;"; break;
       case '"': o += "&quot;"; break;
       case '\'': o += "&#39;"; break;
-      default: o += ch;
+      default: o.append(s, i, n);
     }
+    i += n;
   }
   return o;
 }

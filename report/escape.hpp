@@ -3,10 +3,19 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace masonry {
 
-// Text for HTML and SVG: the five XML special characters as entities.
+// The length (1 to 4 bytes) of the UTF-8 character at s[i], its code point in `cp`; 0 where the
+// bytes there are not UTF-8 (a stray continuation byte, an overlong form, a surrogate, beyond
+// U+10FFFF, cut short).
+size_t utf8_char(std::string_view s, size_t i, unsigned& cp);
+
+// Text for HTML and SVG: the five XML special characters as entities, and whatever XML 1.0 does
+// not allow in a document replaced, so the page stays well-formed whatever a case's ids hold:
+// control characters (an ESC byte) written as \xNN, bytes that are not UTF-8 and U+FFFE/U+FFFF as
+// U+FFFD.
 std::string xml_escape(const std::string& s);
 
 // Text for Markdown: HTML special characters as entities and Markdown punctuation escaped; a

@@ -42,14 +42,27 @@ class ResultsWriter {
   double last_cost_ = 0;
 };
 
+// A capacity run follows a loading path: some support must move, or the run would walk to
+// max_steps and report its end as a capacity (a run of no steps only settles the structure).
+void require_motion(const Case& c, int max_steps) {
+  if (max_steps == 0) return;
+  for (const SupportMotion& m : c.motion.supports)
+    if (m.translation.norm() > 0 || m.rotation != 0) return;
+  throw CaseError(c.source + ": motion: no support moves (" +
+                  (c.motion.supports.empty() ? "motion.supports lists none" : "every support's translation and rotation is 0") +
+                  "): a capacity run has no loading path; `masonry check` says whether the structure stands as it is");
+}
+
 }  // namespace
 
 RunResult run_prd(const Case& c, const PrdSettings& s, const RunOutput& out) {
+  require_motion(c, s.max_steps);
   ResultsWriter w(c, out);
   return w.last(prd_run(c, s, [&](const RunResult& r) { w.step(r); }));
 }
 
 RunResult run_dem(const Case& c, const DemSettings& s, const RunOutput& out) {
+  require_motion(c, s.max_steps);
   ResultsWriter w(c, out);
   return w.last(dem_run(c, s, [&](const RunResult& r) { w.step(r); }));
 }

@@ -24,7 +24,8 @@ struct RunOutput {
 };
 
 // At the case's own settings (PrdSettings::from_case, DemSettings::from_case). Input the solver
-// refuses (settings, geometry it cannot model) throws, as loading a case does: nothing ran.
+// refuses (settings, geometry it cannot model) throws, as loading a case does: nothing ran; so
+// does a case whose supports do not move (CaseError: no loading path) unless it asks for no step.
 RunResult run_case(const Case& c, Method m, const RunOutput& out = {});
 // At explicit settings (a study's variant of the case's own).
 RunResult run_prd(const Case& c, const PrdSettings& s, const RunOutput& out = {});

@@ -9,9 +9,9 @@ packages=(
   libbox2d-dev                     # DEM contact geometry
   nlohmann-json3-dev               # case and result files
   libcli11-dev                     # the command line
-  libdxflib-dev pkg-config         # masonry cases import: DXF drawings (pkg-config finds dxflib)
   libopenmpi-dev openmpi-bin       # masonry sweep across machines (mpirun); its tests start mpirun
   libgtest-dev                     # tests
+  libexpat1-dev                    # tests: every SVG and HTML page written is well-formed XML
   libbenchmark-dev                 # benchmarks
   chromium                         # compare tests: report.html in a headless browser
   jq                               # the PRD report scripts under reports/

@@ -97,7 +97,7 @@ int run_sweep_mpi(const std::string& spec_path, const SweepOptions& o) {
   // One run at a time per rank unless --jobs: mpirun places a rank per core.
   const int jobs = o.jobs > 0 ? o.jobs : 1;
   if (mpi.rank != 0) {
-    sweep_detail::execute_runs(pr.plan, mine, jobs, [](const SweepRow& r) { send(row_to_json(r).dump(), kRowTag); }, {});
+    sweep_detail::execute_runs(pr.plan, mine, jobs, o.keep_runs, [](const SweepRow& r) { send(row_to_json(r).dump(), kRowTag); }, {});
     send("", kDoneTag);
     return 0;
   }
@@ -124,7 +124,7 @@ int run_sweep_mpi(const std::string& spec_path, const SweepOptions& o) {
           record(row_from_json(json::parse(buf)));
       }
     };
-    sweep_detail::execute_runs(pr.plan, mine, jobs, std::ref(record), poll);
+    sweep_detail::execute_runs(pr.plan, mine, jobs, o.keep_runs, std::ref(record), poll);
     for (poll(); finished_ranks < mpi.size - 1; poll()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     return record.finish();
   } catch (const std::exception& e) {

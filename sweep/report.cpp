@@ -13,7 +13,7 @@
 #include "report/format.hpp"
 #include "report/html.hpp"
 #include "report/svg.hpp"
-#include "sweep/sweep.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 
@@ -26,7 +26,7 @@ using fmt::pct;
 using fmt::px;
 using fmt::secs;
 
-const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
+using sweep_detail::row_at;
 double x_of(const SweepPlan& p, const SweepSummary& s, int run) {
   for (size_t k = 0; k < p.keys.size(); ++k)
     if (p.keys[k] == s.x) return p.runs[run].values[k].get<double>();
@@ -55,6 +55,16 @@ std::string curve_label(const SweepCurve& c, bool dem) {
 }
 
 std::string x_title(const SweepSummary& s) { return friction_x(s) ? "friction angle (deg)" : s.x; }
+
+const char* point_name(SweepPoint k) {
+  switch (k) {
+    case SweepPoint::grid: return "grid";
+    case SweepPoint::base: return "base";
+    case SweepPoint::one_at_a_time: return "one-at-a-time";
+    case SweepPoint::sample: return "sample";
+  }
+  return "grid";
+}
 
 bool any_dem(const SweepPlan& p) {
   for (const SweepRun& r : p.runs)
@@ -96,10 +106,12 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
     }
   }
   c.runs.head = {"run", "method"};
+  if (p.sample) c.runs.head.push_back("sample");
   for (const std::string& k : p.keys) c.runs.head.push_back(k);
   for (const char* h : {"capacity (m)", "stopped", "difference from PRD", "PRD: sliding below (deg)", "time (s)", "message"}) c.runs.head.push_back(h);
   for (const SweepRun& run : p.runs) {
     std::vector<std::string> r = {std::to_string(run.index), run.method};
+    if (p.sample) r.push_back(point_text(run));
     for (const json& v : run.values) r.push_back(v.is_null() ? "-" : shown(v));
     const SweepRow* row = row_at(t, run.index);
     if (!row) {
@@ -145,6 +157,8 @@ ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s)
     runs.push_back({{"run", run.index},
                     {"id", run.id},
                     {"method", run.method},
+                    {"point", point_name(run.point)},
+                    {"sample", run.sample >= 0 ? ojson(run.sample) : ojson(nullptr)},
                     {"parameters", params},
                     {"stopped", status_name(row->status)},
                     {"capacity", row->status == RunStatus::error ? ojson(nullptr) : json_number(row->capacity)},
@@ -152,6 +166,7 @@ ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s)
                     {"prd_run", run.prd >= 0 ? ojson(run.prd) : ojson(nullptr)},
                     {"diff_prd", d ? json_number(*d) : ojson(nullptr)},
                     {"required_friction_angle", row->required_friction_angle ? json_number(*row->required_friction_angle) : ojson(nullptr)},
+                    {"hinges", row->hinges},
                     {"message", row->message}});
   }
   j["runs"] = runs;
@@ -265,6 +280,145 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
 
 namespace {
 
+std::string method_name(const std::string& m) { return m == "prd" ? "PRD" : "DEM"; }
+
+// How the capacity runs along a one-at-a-time line.
+std::string trend(const std::vector<double>& c) {
+  if (c.size() < 2) return "-";
+  bool up = false, down = false;
+  for (size_t i = 1; i < c.size(); ++i) up = up || c[i] > c[i - 1], down = down || c[i] < c[i - 1];
+  return up && down ? "not monotonic" : up ? "rises" : down ? "falls" : "flat";
+}
+
+std::string design_text(const SweepPlan& p) {
+  if (!p.sample) return "The grid's runs. One-at-a-time lines: each option's values with every other option at its middle value.";
+  const SweepSample& s = *p.sample;
+  std::string text = "A Latin hypercube of " + std::to_string(s.count) + " samples (seed " + std::to_string(s.seed) + ") over " +
+                     std::to_string(s.ranges.size()) + " option" + (s.ranges.size() > 1 ? "s" : "") +
+                     ": each range cut into as many equal strata as samples, one sample in each stratum at a uniform position within it, "
+                     "the options' strata paired at random; values rounded to 6 significant digits (whole numbers for an integer parameter).";
+  if (!s.only.empty()) text += " This sweep runs " + std::to_string(s.only.size()) + " of the samples (field 'only').";
+  if (s.levels > 0)
+    text += " Besides the samples: the base point (every option at the case's own value) and " + std::to_string(s.levels) +
+            " evenly spaced values of each range with the other options at the base point (one at a time).";
+  return text;
+}
+
+// The most frequent groups (`max_rows` rows at most, the rest summed up).
+Table mechanism_table(const std::vector<MechanismShare>& groups, const std::string& what, bool sampled, int located, size_t max_rows = 12) {
+  Table t;
+  t.head = {what, sampled ? "samples" : "runs", "share", "median capacity (m)"};
+  int rest = 0, rest_groups = 0;
+  for (size_t i = 0; i < groups.size(); ++i) {
+    const MechanismShare& x = groups[i];
+    if (i >= max_rows) {
+      rest += x.count, ++rest_groups;
+      continue;
+    }
+    t.rows.push_back({x.hinges.empty() ? Cell("none") : Cell(x.hinges, CellStyle::code), std::to_string(x.count),
+                      fmt::number(100 * x.share, "%.1f%%", 100 * x.share), fmt::g(x.median_capacity, 4)});
+  }
+  if (rest) {
+    const double share = 100.0 * rest / std::max(1, located);
+    t.rows.push_back({std::to_string(rest_groups) + " others", std::to_string(rest), fmt::number(share, "%.1f%%", share), "-"});
+  }
+  return t;
+}
+
+void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, const SweepSensitivity& sens) {
+  d.heading(2, {"Sensitivity of the capacity"});
+  d.paragraph({design_text(p) + " The numbers are also in ", Cell("sensitivity.json", CellStyle::code), "."});
+  for (const MethodSensitivity& m : sens.methods) {
+    const std::string M = method_name(m.method);
+    d.heading(3, {M});
+    if (sens.sampled) {
+      Table pc;
+      pc.head = {"samples", "located", "capacity 0", "5th percentile (m)", "median (m)", "95th percentile (m)", "least (m)", "largest (m)"};
+      std::vector<Cell> row = {std::to_string(m.counted), std::to_string(m.located), std::to_string(m.zero)};
+      for (size_t q = 0; q < 3; ++q) row.push_back(q < m.percentiles.size() ? fmt::g(m.percentiles[q].second, 4) : "-");
+      row.push_back(m.located ? fmt::g(m.min, 4) : "-");
+      row.push_back(m.located ? fmt::g(m.max, 4) : "-");
+      pc.rows.push_back(row);
+      d.table(pc);
+      std::string near;
+      for (size_t q = 0; q < m.nearest.size(); ++q)
+        near += (near.empty() ? "" : "; ") + std::to_string(m.percentiles[q].first) + "th: sample " + std::to_string(m.nearest[q].sample) + " (" +
+                fmt::g(m.nearest[q].capacity, 4) + " m)";
+      if (!near.empty()) d.paragraph({"Percentiles: linear interpolation between the sorted capacities (numpy's default). The samples nearest them: " + near + "."});
+    }
+    Table el;
+    el.head = {"option", "elasticity", "standard error", "runs", sens.sampled ? "Spearman" : "", "one at a time: capacity (m)", "along the line", "capacity 0 at"};
+    if (!sens.sampled) el.head.erase(el.head.begin() + 4);
+    std::string how;
+    for (const ParameterSensitivity& ps : m.parameters) {
+      std::vector<Cell> row = {Cell(ps.key, CellStyle::code)};
+      if (ps.ignored) {
+        for (const char* x : {"ignored", "-", "-"}) row.push_back(x);
+        if (sens.sampled) row.push_back("-");
+        for (const char* x : {"-", "-", "-"}) row.push_back(x);
+        el.rows.push_back(row);
+        continue;
+      }
+      if (how.empty()) how = ps.estimate;
+      row.push_back(ps.elasticity ? fmt::g(*ps.elasticity, 3) + (ps.log ? "" : " per unit") : "-");
+      row.push_back(ps.standard_error ? fmt::g(*ps.standard_error, 2) : "-");
+      row.push_back(std::to_string(ps.n));
+      if (sens.sampled) row.push_back(ps.spearman ? fmt::number(*ps.spearman, "%+.2f", *ps.spearman) : "-");
+      if (ps.capacities.empty()) {
+        row.push_back("-");
+      } else {
+        const auto [a, b] = std::minmax_element(ps.capacities.begin(), ps.capacities.end());
+        row.push_back(fmt::g(*a, 3) + " to " + fmt::g(*b, 3) + " (x = " + fmt::g(ps.values[a - ps.capacities.begin()], 4) + ", " +
+                      fmt::g(ps.values[b - ps.capacities.begin()], 4) + ")");
+      }
+      row.push_back(trend(ps.capacities));
+      std::string zeros;
+      for (size_t i = 0; i < ps.values.size(); ++i)
+        if (ps.capacities[i] == 0) zeros += (zeros.empty() ? "" : ", ") + fmt::g(ps.values[i], 4);
+      row.push_back(zeros.empty() ? "-" : zeros);
+      el.rows.push_back(row);
+    }
+    d.table(el);
+    if (!how.empty())
+      d.paragraph({"Elasticity: d ln(capacity) / d ln(x), " + how + (m.r2 ? " (R² = " + fmt::g(*m.r2, 3) + ")" : "") +
+                   "; runs with capacity 0 have no logarithm and are left out of it" +
+                   (sens.sampled ? " (the Spearman rank correlation of x and the capacity, over every located sample, keeps them)" : "") +
+                   ". One at a time: the least and largest capacity along the option's line, and the x where they occur."});
+    if (const std::string svg = svg_tornado(p, m); !svg.empty()) d.figure("figures/tornado-" + m.method + ".svg", M + ": one-at-a-time ranges", svg);
+    if (const std::string svg = svg_histogram(p, t, m); !svg.empty())
+      d.figure("figures/histogram-" + m.method + ".svg", M + ": the sampled capacities", svg);
+    if (!m.mechanisms.empty()) {
+      d.paragraph({"Collapse mechanisms: the " + std::string(sens.sampled ? "samples" : "runs") +
+                   " grouped by their hinges at collapse (PRD: the corners its collapse mechanism opens, a hinge named by the corner it turns "
+                   "about; DEM: the hinges of its last equilibrium beyond its settled gaps), then by the members those hinges lie in (block ids "
+                   "without their voussoir or course number), which geometry that moves a hinge by a voussoir keeps."});
+      // Hinge sets that group nothing (each its own, as on the cathedral, whose courses and
+      // voussoirs renumber with the geometry) are left to sweep.csv's `hinges` column.
+      if (2 * m.mechanisms.size() <= size_t(m.located) || m.mechanisms.size() <= 12)
+        d.table(mechanism_table(m.mechanisms, "hinges at collapse", sens.sampled, m.located));
+      else
+        d.paragraph({std::to_string(m.mechanisms.size()) + " different sets of hinges over " + std::to_string(m.located) + " rows (each row's in ",
+                     Cell("sweep.csv", CellStyle::code), "'s column ", Cell("hinges", CellStyle::code), "): grouped by members only."});
+      if (m.members.size() < m.mechanisms.size()) d.table(mechanism_table(m.members, "members with hinges", sens.sampled, m.located));
+      if (m.members.size() > 1) {
+        d.paragraph({"Each member (or pair of members joined by a hinge) alone: the share of the " + std::string(sens.sampled ? "samples" : "runs") +
+                     " whose hinges at collapse include it, and their median capacity."});
+        d.table(mechanism_table(m.member_frequency, "member with a hinge", sens.sampled, m.located, m.member_frequency.size()));
+      }
+    }
+  }
+  if (const std::string svg = svg_prd_dem(p, sens); !svg.empty()) {
+    d.heading(3, {"PRD against DEM"});
+    d.figure("figures/prd-dem.svg", "DEM against PRD per point", svg);
+    Table pd;
+    pd.head = {"sample", "run (DEM)", "PRD (m)", "DEM (m)", "difference"};
+    for (const PrdDemPair& x : sens.pairs)
+      pd.rows.push_back({x.sample >= 0 ? std::to_string(x.sample) : "-", std::to_string(x.dem), fmt::g(x.prd_capacity, 4), fmt::g(x.dem_capacity, 4),
+                         x.prd_capacity > 0 ? pct((x.dem_capacity - x.prd_capacity) / x.prd_capacity) : "-"});
+    d.table(pd);
+  }
+}
+
 // The report for both media: the Markdown links figures/capacity.svg, the page inlines it.
 Document sweep_document(const SweepPlan& p, const SweepTable& t, const SweepSummary& s, const std::string& command) {
   const Content c = content(p, t, s);
@@ -275,6 +429,7 @@ Document sweep_document(const SweepPlan& p, const SweepTable& t, const SweepSumm
     d.paragraph({"Made with ", Cell(command, CellStyle::code), "; the table is ", Cell("sweep.csv", CellStyle::code), ", the numbers also in ",
                  Cell("sweep.json", CellStyle::code), "."});
   d.paragraph({c.lead});
+  if (const std::string note = prd_ignores_note(p); !note.empty()) d.paragraph({Cell(note, CellStyle::strong)});
   if (c.has_figure) {
     d.heading(2, {"Capacity against the " + x_title(s)});
     d.figure("figures/capacity.svg", "capacity against " + s.x, svg_sweep(p, t, s));
@@ -286,6 +441,7 @@ Document sweep_document(const SweepPlan& p, const SweepTable& t, const SweepSumm
     if (!items.empty()) d.list(std::move(items));
     d.table(c.boundaries);
   }
+  sensitivity_section(d, p, t, sensitivity(p, t));
   d.heading(2, {"Runs"});
   d.table(c.runs);
   return d;
@@ -312,7 +468,14 @@ void write_sweep_outputs(const std::string& dir, const SweepPlan& p, const Sweep
   const SweepSummary s = summarize(p, t);
   write_file_atomic(dir + "/sweep.csv", sweep_csv(p, t));
   write_file_atomic(dir + "/sweep.json", sweep_json(p, t, s).dump(1) + "\n");
+  const SweepSensitivity sens = sensitivity(p, t);
+  write_file_atomic(dir + "/sensitivity.json", sensitivity_json(p, sens).dump(1) + "\n");
   if (!s.x.empty() && !s.curves.empty()) write_file_atomic(dir + "/figures/capacity.svg", svg_sweep(p, t, s));
+  for (const MethodSensitivity& m : sens.methods) {
+    if (const std::string svg = svg_tornado(p, m); !svg.empty()) write_file_atomic(dir + "/figures/tornado-" + m.method + ".svg", svg);
+    if (const std::string svg = svg_histogram(p, t, m); !svg.empty()) write_file_atomic(dir + "/figures/histogram-" + m.method + ".svg", svg);
+  }
+  if (const std::string svg = svg_prd_dem(p, sens); !svg.empty()) write_file_atomic(dir + "/figures/prd-dem.svg", svg);
   write_file_atomic(dir + "/report.md", sweep_markdown(p, t, s, command));
   write_file_atomic(dir + "/report.html", sweep_html(p, t, s, command));
 }

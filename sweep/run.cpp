@@ -16,7 +16,7 @@
 
 namespace masonry {
 
-SweepRow execute_run(const SweepPlan& p, const SweepRun& run) {
+SweepRow execute_run(const SweepPlan& p, const SweepRun& run, bool keep) {
   SweepRow row;
   row.index = run.index;
   row.id = run.id;
@@ -24,9 +24,15 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     const Method m = run.method == "prd" ? Method::prd : Method::dem;
-    // PRD runs carry the sliding check, so the report can set its prediction beside the DEM.
-    const Case c = m == Method::prd ? with_option(case_of_run(p, run), "prd.sliding_check", true) : case_of_run(p, run);
+    const Case own = case_of_run(p, run);
+    // PRD runs carry the sliding check, so the report can set its prediction beside the DEM
+    // (unless the sweep file's "set" turns it off).
+    const Case c = m == Method::prd && p.sliding_check ? with_option(own, "prd.sliding_check", true) : own;
     const RunResult r = run_case_in_study(c, m);
+    row.hinges = hinges_at_collapse(c, r);
+    // The case as the run's row names it (without the PRD's sliding check, a setting): what
+    // `masonry compare CASE --runs` is given for any two runs of the same point.
+    if (keep) row.files = SweepRow::Files{case_to_json(own), to_json(r, c).dump(1) + "\n", steps_csv(r)};
     row.capacity = r.capacity;
     row.time_s = r.timing.total_s;
     row.message = r.message;
@@ -72,7 +78,7 @@ Prepared prepare(const SweepInput& in, const SweepOptions& o) {
 }
 
 Recorder::Recorder(Prepared& pr, const SweepOptions& o, int workers, const std::string& where)
-    : pr_(pr), o_(o), file_(pr.csv_path, std::ios::binary | std::ios::app) {
+    : pr_(pr), o_(o), file_(pr.csv_path, std::ios::binary | std::ios::app), progress_("sweep", pr.todo.size()) {
   if (!file_) throw SweepError(pr.csv_path + ": cannot append");
   if (o_.quiet) return;
   int prd = 0;
@@ -80,22 +86,34 @@ Recorder::Recorder(Prepared& pr, const SweepOptions& o, int workers, const std::
   std::fprintf(stderr, "sweep: %s: %zu runs (%d PRD, %zu DEM); %zu in %s already, %zu to run on %d %s\n", pr.plan.name.c_str(),
                pr.plan.runs.size(), prd, pr.plan.runs.size() - prd, pr.plan.runs.size() - pr.todo.size(), pr.csv_path.c_str(),
                pr.todo.size(), workers, where.c_str());
+  if (const std::string note = prd_ignores_note(pr.plan); !note.empty()) std::fprintf(stderr, "sweep: %s\n", note.c_str());
 }
 
 void Recorder::operator()(const SweepRow& r) {
+  if (r.files) {
+    // The files write_results writes, from their texts (a row from another MPI rank carries them).
+    const std::string dir = o_.out_dir + "/runs/" + r.id;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw SweepError(dir + ": cannot create the run's directory: " + ec.message());
+    write_file_atomic(dir + "/results.json", r.files->results_json);
+    write_file_atomic(dir + "/steps.csv", r.files->steps_csv);
+    write_file_atomic(dir + "/case.json", r.files->case_json);
+  }
   pr_.table.at(r.index) = r;
+  pr_.table.at(r.index)->files.reset();  // written: not kept in memory
   file_ << sweep_csv_line(pr_.plan, r, pr_.table) << std::flush;
   if (!file_) throw SweepError(pr_.csv_path + ": write failed");
   ++done_;
   if (o_.quiet) return;
   const SweepRun& run = pr_.plan.runs[r.index];
   const std::string label = run_label(pr_.plan, run);
-  if (r.status == RunStatus::error)
-    std::fprintf(stderr, "sweep: [%zu/%zu] run %d %s (%s): error: %s\n", done_, pr_.todo.size(), r.index, r.method.c_str(), label.c_str(),
-                 r.message.c_str());
-  else
-    std::fprintf(stderr, "sweep: [%zu/%zu] run %d %s (%s): %s, capacity %.6g m, %.3g s\n", done_, pr_.todo.size(), r.index,
-                 r.method.c_str(), label.c_str(), status_name(r.status), r.capacity, r.time_s);
+  char b[96];
+  if (r.status == RunStatus::error) std::snprintf(b, sizeof b, "error after %.3g s", r.time_s);
+  else std::snprintf(b, sizeof b, "%s, capacity %.6g m in %.3g s", status_name(r.status), r.capacity, r.time_s);
+  std::cerr << progress_.line(done_, "run " + std::to_string(r.index) + " " + r.method + " (" + label + "): " + b +
+                                         (r.status == RunStatus::error ? ": " + r.message : std::string()))
+            << "\n" << std::flush;
 }
 
 int Recorder::finish() {
@@ -113,7 +131,7 @@ int Recorder::finish() {
   return s.errors > 0 ? 1 : 0;
 }
 
-void execute_runs(const SweepPlan& p, const std::vector<int>& todo, int jobs, const std::function<void(const SweepRow&)>& done,
+void execute_runs(const SweepPlan& p, const std::vector<int>& todo, int jobs, bool keep, const std::function<void(const SweepRow&)>& done,
                   const std::function<void()>& idle) {
   std::vector<int> dem;
   // GLPK keeps one environment per thread (thread-local in Debian's build), and a pool thread's
@@ -123,7 +141,7 @@ void execute_runs(const SweepPlan& p, const std::vector<int>& todo, int jobs, co
       dem.push_back(i);
       continue;
     }
-    done(execute_run(p, p.runs[i]));
+    done(execute_run(p, p.runs[i], keep));
     if (idle) idle();
   }
   if (dem.empty()) return;
@@ -133,7 +151,7 @@ void execute_runs(const SweepPlan& p, const std::vector<int>& todo, int jobs, co
   std::atomic<size_t> next{0};
   const auto work = [&] {
     for (size_t k; (k = next++) < dem.size();) {
-      SweepRow r = execute_run(p, p.runs[dem[k]]);
+      SweepRow r = execute_run(p, p.runs[dem[k]], keep);
       std::lock_guard<std::mutex> lock(m);
       ready.push_back(std::move(r));
       cv.notify_all();
@@ -172,7 +190,7 @@ SweepTable run_sweep(const SweepInput& in, const SweepOptions& o) {
   sweep_detail::Prepared pr = sweep_detail::prepare(in, o);
   const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   sweep_detail::Recorder record(pr, o, jobs, jobs == 1 ? "thread" : "threads");
-  sweep_detail::execute_runs(pr.plan, pr.todo, jobs, std::ref(record), {});
+  sweep_detail::execute_runs(pr.plan, pr.todo, jobs, o.keep_runs, std::ref(record), {});
   record.finish();
   return pr.table;
 }

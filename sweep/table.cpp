@@ -5,7 +5,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "sweep/sweep.hpp"
+#include "sweep/runner.hpp"
 
 namespace masonry {
 
@@ -13,18 +13,14 @@ using nlohmann::json;
 
 namespace {
 
-const char* const kTail[] = {"capacity", "stopped", "time_s", "diff_prd", "required_friction_angle", "message"};
+const char* const kTail[] = {"capacity", "stopped", "time_s", "diff_prd", "required_friction_angle", "hinges", "message"};
+
+// A sampled sweep's table has a `sample` column after `method`: the run's point in the design.
+size_t head_columns(const SweepPlan& p) { return p.sample ? 4 : 3; }
 
 // Numbers in their shortest exact form (nlohmann's): a resumed table reads back the very doubles
 // it wrote, so a row computed from them (diff_prd) is the same whether or not the sweep stopped.
 std::string num(double x) { return std::isfinite(x) ? json(x).dump() : ""; }
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string o = "\"";
-  for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return o + "\"";
-}
 
 std::string csv_join(const std::vector<std::string>& cells) {
   std::string s;
@@ -69,14 +65,30 @@ bool parse_number(const std::string& s, double& x) {
   return end == s.c_str() + s.size() && std::isfinite(x);
 }
 
-const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
+// m: the end of a run's loading path, step x max_steps with the run's own values where it varies them.
+double path_end(const SweepPlan& p, const SweepRun& run) {
+  double step = p.base.motion.step, steps = p.base.motion.max_steps;
+  for (size_t k = 0; k < p.keys.size(); ++k) {
+    if (!run.values[k].is_number()) continue;
+    if (p.keys[k] == "motion.step") step = run.values[k].get<double>();
+    if (p.keys[k] == "motion.max_steps") steps = run.values[k].get<double>();
+  }
+  return step * steps * (1 + 1e-9);
+}
 
 }  // namespace
+
+namespace sweep_detail {
+const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.size()) && t[i] ? &*t[i] : nullptr; }
+}  // namespace sweep_detail
+using sweep_detail::row_at;
 
 json row_to_json(const SweepRow& r) {
   json j = {{"run", r.index}, {"id", r.id}, {"method", r.method}, {"stopped", status_name(r.status)},
             {"capacity", r.capacity}, {"time_s", r.time_s}, {"message", r.message}};
   if (r.required_friction_angle) j["required_friction_angle"] = *r.required_friction_angle;
+  if (!r.hinges.empty()) j["hinges"] = r.hinges;
+  if (r.files) j["files"] = {{"case", r.files->case_json}, {"results", r.files->results_json}, {"steps", r.files->steps_csv}};
   return j;
 }
 
@@ -93,6 +105,10 @@ SweepRow row_from_json(const json& j) {
   r.time_s = j.at("time_s").get<double>();
   r.message = j.at("message").get<std::string>();
   if (j.contains("required_friction_angle")) r.required_friction_angle = j["required_friction_angle"].get<double>();
+  if (j.contains("hinges")) r.hinges = j["hinges"].get<std::string>();
+  if (j.contains("files"))
+    r.files = SweepRow::Files{j["files"].at("case").get<std::string>(), j["files"].at("results").get<std::string>(),
+                              j["files"].at("steps").get<std::string>()};
   return r;
 }
 
@@ -107,6 +123,7 @@ std::optional<double> diff_prd(const SweepRow& dem, const SweepRow* prd) {
 
 std::string sweep_csv_header(const SweepPlan& p) {
   std::vector<std::string> cells = {"run", "id", "method"};
+  if (p.sample) cells.push_back("sample");
   cells.insert(cells.end(), p.keys.begin(), p.keys.end());
   cells.insert(cells.end(), std::begin(kTail), std::end(kTail));
   return csv_join(cells);
@@ -115,6 +132,7 @@ std::string sweep_csv_header(const SweepPlan& p) {
 std::string sweep_csv_line(const SweepPlan& p, const SweepRow& r, const SweepTable& t) {
   const SweepRun& run = p.runs.at(r.index);
   std::vector<std::string> cells = {std::to_string(r.index), r.id, r.method};
+  if (p.sample) cells.push_back(point_text(run));
   for (const json& v : run.values) cells.push_back(v.is_null() ? std::string() : value_text(v));
   const std::optional<double> diff = r.method == "dem" ? diff_prd(r, row_at(t, run.prd)) : std::nullopt;
   cells.push_back(r.status == RunStatus::error ? std::string() : num(r.capacity));
@@ -122,7 +140,11 @@ std::string sweep_csv_line(const SweepPlan& p, const SweepRow& r, const SweepTab
   cells.push_back(num(r.time_s));
   cells.push_back(diff ? num(*diff) : std::string());
   cells.push_back(r.required_friction_angle ? num(*r.required_friction_angle) : std::string());
-  cells.push_back(r.message);
+  cells.push_back(r.hinges);
+  std::string message = r.message;  // one line, as every message is meant to be
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::replace(message.begin(), message.end(), '\r', ' ');
+  cells.push_back(message);
   return csv_join(cells);
 }
 
@@ -152,29 +174,32 @@ SweepTable read_sweep_csv(const SweepPlan& p, const std::string& text, const std
       continue;
     }
     const std::vector<std::string> f = csv_split(line);
-    const size_t nk = p.keys.size();
-    if (f.size() != 3 + nk + std::size(kTail)) continue;
+    const size_t nk = p.keys.size(), h = head_columns(p), tail = h + nk;
+    if (f.size() != tail + std::size(kTail)) continue;
     auto it = by_id.find(f[1]);
     if (it == by_id.end())
       throw SweepError(source + ":" + std::to_string(line_no) + ": run id " + f[1] +
                        " is not a run of this sweep (the sweep file or the case changed since): use --restart to discard the table, or another --out");
     const SweepRun& run = p.runs[it->second];
     // A line whose fields do not all read back is incomplete: its run is done again.
-    bool ok = f[2] == run.method;
-    for (size_t k = 0; k < nk && ok; ++k) ok = f[3 + k] == (run.values[k].is_null() ? "" : value_text(run.values[k]));
+    bool ok = f[2] == run.method && (h == 3 || f[3] == point_text(run));
+    for (size_t k = 0; k < nk && ok; ++k) ok = f[h + k] == (run.values[k].is_null() ? "" : value_text(run.values[k]));
     SweepRow r;
     r.index = run.index;
     r.id = run.id;
     r.method = run.method;
-    const std::optional<RunStatus> status = parse_status(f[3 + nk + 1]);
+    const std::optional<RunStatus> status = parse_status(f[tail + 1]);
     ok = ok && status && *status != RunStatus::running;
     if (status) r.status = *status;
-    r.message = f[3 + nk + 5];
-    ok = ok && parse_number(f[3 + nk + 2], r.time_s);
-    if (r.status != RunStatus::error) ok = ok && parse_number(f[3 + nk], r.capacity);
+    r.hinges = f[tail + 5];
+    r.message = f[tail + 6];
+    // A number no run can give (a capacity beyond its path or below 0, a negative time, an angle
+    // beyond 90 degrees) is a row someone or something else wrote: its run is done again.
+    ok = ok && parse_number(f[tail + 2], r.time_s) && r.time_s >= 0;
+    if (r.status != RunStatus::error) ok = ok && parse_number(f[tail], r.capacity) && r.capacity >= 0 && r.capacity <= path_end(p, run);
     double angle = 0;
-    if (!f[3 + nk + 4].empty()) {
-      ok = ok && parse_number(f[3 + nk + 4], angle);
+    if (!f[tail + 4].empty()) {
+      ok = ok && parse_number(f[tail + 4], angle) && angle >= 0 && angle <= 90;
       r.required_friction_angle = angle;
     }
     if (ok && !t[r.index]) t[r.index] = r;
@@ -188,6 +213,9 @@ SweepSummary summarize(const SweepPlan& p, const SweepTable& t) {
     s.finished += r.has_value();
     s.errors += r && !located(*r);
   }
+  // A sampled sweep has no curves: its samples vary every key at once (the sensitivity section
+  // draws them).
+  if (p.sample) return s;
   // The curves are the DEM runs, or the PRD runs in a sweep without DEM; x is the friction angle
   // when it varies, else the first option whose values in those runs are all numbers.
   bool has_dem = false;

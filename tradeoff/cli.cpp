@@ -147,8 +147,10 @@ int run_tradeoff_command(const TradeoffOpts& o) {
     csv << csv_row(r) << std::flush;
   });
   write_tradeoff(o.out_dir, t);
-  for (const std::string& s : summary_lines(t)) std::cerr << "tradeoff: " << s << "\n";
-  std::cerr << "tradeoff: report in " << o.out_dir << "/report.html and " << o.out_dir << "/report.md\n";
+  if (!o.quiet) {
+    for (const std::string& s : summary_lines(t)) std::cerr << "tradeoff: " << s << "\n";
+    std::cerr << "tradeoff: report in " << o.out_dir << "/report.html and " << o.out_dir << "/report.md\n";
+  }
   bool ref_failed = false;
   for (const Row& r : t.rows) ref_failed = ref_failed || (r.reference && !r.ok());
   if (ref_failed) std::cerr << "tradeoff: a reference run did not finish: its method's errors are n/a\n";
@@ -175,7 +177,7 @@ void add_tradeoff_commands(CLI::App& app, Commands& out) {
   sub->add_flag("--dry-run", o->dry_run, "List the settings and write their case files; run nothing");
   sub->add_option("--target-capacity", o->target_capacity, "Capacity error counted as good enough in the summary (default 0.01)")->check(CLI::PositiveNumber);
   sub->add_option("--target-thrust", o->target_thrust, "Thrust error (/ W) counted as good enough in the summary (default 0.01)")->check(CLI::PositiveNumber);
-  sub->add_flag("--quiet", o->quiet, "No progress lines");
+  sub->add_flag("--quiet", o->quiet, "No progress lines and no summary: only warnings and why the exit code is not 0");
   out.push_back({sub, [o]() { return run_tradeoff_command(*o); }});
 }
 

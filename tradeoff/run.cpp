@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "compare/compare.hpp"
+#include "runs/progress.hpp"
 #include "runs/run.hpp"
 #include "tradeoff/tradeoff.hpp"
 
@@ -94,6 +95,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
     if (o.progress) o.progress(s);
   };
   std::vector<Row> rows;
+  const StudyProgress progress("tradeoff", runs.size());
   std::map<std::string, RunResult> refs;  // method -> its reference run
   std::map<std::string, bool> ref_ok;
   for (const PlannedRun& p : runs) {
@@ -173,8 +175,10 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
     }
     const auto ref = refs.find(row.method);
     set_errors(row, base, ref == refs.end() ? nullptr : &ref->second, ref_ok[row.method], r);
-    say("tradeoff: " + row.method + " " + row.label + ": " + status_name(row.status) + std::string(row.message.empty() ? "" : " (" + row.message + ")") +
-        ", capacity " + (std::isfinite(row.capacity) ? std::to_string(row.capacity) : "n/a") + " m, " + std::to_string(row.time_s) + " s");
+    say(progress.line(rows.size() + 1, row.method + " " + row.label + ": " + status_name(row.status) +
+                                           std::string(row.message.empty() ? "" : " (" + row.message + ")") + ", capacity " +
+                                           (std::isfinite(row.capacity) ? std::to_string(row.capacity) : "n/a") + " m in " +
+                                           std::to_string(row.time_s) + " s"));
     rows.push_back(row);
     if (on_row) on_row(rows.back());
   }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cases/generators.hpp"
+#include "model/fields.hpp"
 #include "model/io.hpp"
 
 namespace masonry {
@@ -235,12 +236,7 @@ Benchmark parse_benchmark(const json& e, const Where& file_where, size_t index) 
 
 Catalogue parse_catalogue(const std::string& text, const std::string& source, const std::string& folder) {
   const Where w{source, ""};
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    w.fail("", std::string("malformed JSON: ") + e.what());
-  }
+  json doc = parse_document<CaseError>(text, source);
   if (!doc.is_object()) w.fail("", "must be a JSON object");
   only_fields(doc, {"format", "description", "benchmarks"}, w, "");
   if (!doc.contains("format") || doc["format"] != "masonry-catalogue/1") w.fail("format", "must be \"masonry-catalogue/1\"");

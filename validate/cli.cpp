@@ -14,6 +14,7 @@
 
 #include "app/command.hpp"
 #include "model/results.hpp"
+#include "runs/progress.hpp"
 #include "validate/validate.hpp"
 
 namespace masonry {
@@ -76,7 +77,7 @@ void add_validate_commands(CLI::App& app, Commands& out) {
   sub->add_option("--markdown", o->markdown, "Write the report to this Markdown file");
   sub->add_option("--catalogue", o->catalogue, "A catalogue file (masonry-catalogue/1) instead of the built-in one");
   sub->add_flag("--list", o->list, "List the catalogue's benchmarks and exit");
-  sub->add_flag("--quiet", o->quiet, "No progress lines");
+  sub->add_flag("--quiet", o->quiet, "No progress lines (the table is the command's output, on standard output)");
   sub->add_option("--solver", o->solver,
                   "Judge an outside solver instead: a shell command with {case} (a masonry-case/1 file it reads) and {out} (an empty "
                   "directory where it writes results.json, masonry-results/1); README, \"Gate your own solver in CI\"");
@@ -106,12 +107,14 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                    }
                    std::vector<ValidationRow> rows;
                    RunCache cache;
+                   const StudyProgress progress("validate", todo.size());
                    for (size_t k = 0; k < todo.size(); ++k) {
                      const auto part = run_benchmark(cat, *todo[k], cache, [&](const ValidationRow& r) {
                        if (o->quiet) return;
                        const char* verdict = !r.applicable ? "n/a" : r.pass ? "pass" : r.solver_error ? "ERROR" : "FAIL";
-                       std::fprintf(stderr, "validate [%zu/%zu] %s (%s): %s, %.2f s\n", k + 1, todo.size(), r.benchmark->name.c_str(),
-                                    r.method_label.c_str(), verdict, r.seconds);
+                       char b[48];
+                       std::snprintf(b, sizeof b, ": %s in %.2f s", verdict, r.seconds);
+                       std::cerr << progress.line(k + 1, r.benchmark->name + " (" + r.method_label + ")" + b) << "\n" << std::flush;
                      }, solver ? &*solver : nullptr);
                      rows.insert(rows.end(), part.begin(), part.end());
                      // Finished rows are kept even when a later benchmark fails or the run is stopped.

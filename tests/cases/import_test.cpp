@@ -3,6 +3,7 @@
 // both methods), and the refusals' one-line messages naming the drawing, layer and entity.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,7 @@
 #include "cases/generators.hpp"
 #include "prd/prd.hpp"
 #include "cases/show.hpp"
+#include "xml.hpp"
 
 namespace masonry {
 namespace {
@@ -27,6 +29,7 @@ struct Poly {
 };
 std::string dxf(const std::vector<Poly>& polys, int insunits = 6, const std::string& extra = "") {
   std::ostringstream o;
+  o.precision(17);
   o << "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n" << insunits << "\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n";
   int handle = 0x40;
   for (const Poly& p : polys) {
@@ -163,6 +166,185 @@ TEST(CasesImport, RefusalsAreOneLineNamingDrawingLayerAndEntity) {
   (void)import_error(corrupt);
 }
 
+// The drawing of a block on the ground, the block an LWPOLYLINE (handle 2C, layer MASONRY) whose
+// group codes after its layer are given as text.
+std::string block_on_ground(const std::string& codes) {
+  return dxf({rect("SUPPORT", -2, -0.5, 2, 0)}, 6, "0\nLWPOLYLINE\n5\n2C\n8\nMASONRY\n" + codes);
+}
+const std::string kSquare = "10\n0\n20\n0\n10\n1\n20\n0\n10\n1\n20\n1\n10\n0\n20\n1\n";
+
+// A drawing that breaks the DXF reference is refused in one line naming the drawing, its line,
+// the entity's handle and the group code: dxflib crashed on the counts (SIGSEGV at 99999999999
+// vertices, a double free at 2147483647) and read "XYZ", "nan" and "abc" as 0, "1,5" as 1.5 and
+// "0.4 junk" as 0.4; an empty value or a missing y silently changed the polygon.
+TEST(CasesImport, MalformedDrawingsAreRefusedNamingTheHandleAndGroupCode) {
+  struct Bad {
+    std::string codes, needle;
+  };
+  const auto square_with = [](const std::string& from, const std::string& to) {
+    std::string q = kSquare;
+    q.replace(q.find(from), from.size(), to);
+    return q;
+  };
+  const std::vector<Bad> bad = {
+      {"90\n99999999999\n70\n1\n" + kSquare, "group code 90 = '99999999999': not a 32-bit integer"},
+      {"90\n2147483647\n70\n1\n" + kSquare, "group code 90 = '2147483647': the entity has 4 vertices"},
+      {"90\n-4\n70\n1\n" + kSquare, "group code 90 = '-4': a negative number of vertices"},
+      {"70\n1\n" + kSquare, "group code 90 (the number of vertices) is missing"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\nXYZ\n20\n1\n"), "group code 10 = 'XYZ': not a real number"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\nnan\n20\n1\n"), "group code 10 = 'nan': not a real number"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\n1\n20\nabc\n"), "group code 20 = 'abc': not a real number"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\n1\n20\n\n"), "group code 20 = '': not a real number"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\n1,5\n20\n1\n"), "group code 10 = '1,5': not a real number"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\n0.4  junk\n20\n1\n"), "group code 10 = '0.4  junk': not a real number"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\n1e999\n20\n1\n"), "group code 10 = '1e999': not a real number"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\n1\n"), "group code 10 = '1': a vertex's x without its y"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "20\n1\n10\n1\n"), "a vertex's y without its x"},
+      {"90\n4\n70\n1.0\n" + kSquare, "group code 70 = '1.0': not a 16-bit integer"},
+      {"90\n4\n70\n1\n" + square_with("10\n0\n20\n0\n", "42\n0.5\n10\n0\n20\n0\n"), "group code 42 = '0.5': a bulge before the first vertex"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\n1e9\n20\n1\n"), "group codes 10/20: a vertex beyond 1e5 m from the origin"},
+      {"90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\n1\n20\n1\n42\n1e15\n"), "group code 42 = 1e+15: the arc needs more than"},
+      {"90\n4\n70\n1\n210\n0\n220\n1\n230\n0\n" + kSquare, "group codes 210/220/230: drawn in another plane than x-y"},
+      {"90\n4\n70\n1\n" + kSquare + "abc\nx\n", "'abc' is not a group code"},
+      {"90\n4\n70\n1\n" + kSquare + "9999\nx\n", "'9999' is not a group code"},
+      {"90\n4\n70\n1\n" + kSquare + "0\nVERTEX\n5\n2D\n10\n0\n20\n0\n", "VERTEX (handle 2D, layer '0'): outside a POLYLINE"},
+      {"90\n4\n70\n1\n" + kSquare + "0\nPOLYLINE\n5\n2E\n8\nMASONRY\n70\n1\n0\nVERTEX\n10\n0\n20\n2\n",
+       "POLYLINE (handle 2E, layer 'MASONRY'): its vertices end without a SEQEND"},
+  };
+  for (const Bad& b : bad) {
+    const std::string msg = import_error(block_on_ground(b.codes));
+    EXPECT_NE(msg.find(b.needle), std::string::npos) << b.needle << " | " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_NE(msg.find("d.dxf:"), std::string::npos) << msg;
+  }
+  // Each refusal about the entity names its handle, its layer and the line in the file.
+  const std::string text = block_on_ground("90\n4\n70\n1\n" + square_with("10\n1\n20\n1\n", "10\nXYZ\n20\n1\n"));
+  const std::string msg = import_error(text);
+  EXPECT_NE(msg.find("LWPOLYLINE (handle 2C, layer 'MASONRY')"), std::string::npos) << msg;
+  const auto line = std::count(text.begin(), text.begin() + static_cast<long>(text.find("XYZ")), '\n');  // the line of its group code
+  EXPECT_NE(msg.find("d.dxf:" + std::to_string(line) + ": "), std::string::npos) << msg;
+  // Cut short anywhere: refused, never read as far as it goes.
+  const std::string whole = block_on_ground("90\n4\n70\n1\n" + kSquare);
+  for (const std::string& cut : {whole.substr(0, whole.rfind("0\nEOF")), whole.substr(0, whole.rfind("ENDSEC")), whole.substr(0, whole.size() / 2)}) {
+    const std::string m = import_error(cut);
+    EXPECT_NE(m.find("truncated"), std::string::npos) << m;
+  }
+  // A NUL byte inside the file is binary content, not text.
+  std::string nul = whole;
+  nul[whole.find("MASONRY")] = '\0';
+  EXPECT_NE(import_error(nul).find("binary content"), std::string::npos);
+}
+
+// What the reference allows is read as it means: blanks around numbers, a sign, a bare decimal
+// point, an exponent, CR LF line ends, comments; and the square is the square.
+TEST(CasesImport, WellFormedNumbersInAnyWrittenFormImport) {
+  const std::string q = "10\n  0.0  \n20\n+0\n10\n1.\n20\n-0.0\n10\n1E0\n20\n.1e1\n10\n0\n20\n1\n";
+  std::string text = block_on_ground("999\nA comment\n90\n     4\n70\n     1\n" + q);
+  std::string crlf;
+  for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+  for (const std::string& t : {text, crlf}) {
+    Scratch dir("forms");
+    test::write(dir.path / "f.dxf", t);
+    DxfImportOptions o;
+    o.density = 2000;
+    const Case c = import_dxf((dir.path / "f.dxf").string(), o).c;
+    ASSERT_EQ(c.blocks.size(), 2u);
+    EXPECT_EQ(c.blocks[1].vertices.size(), 4u);
+    EXPECT_NEAR(std::abs(signed_area(c.blocks[1].vertices)), 1.0, 1e-15);
+  }
+}
+
+// A polyline drawn from the other side (extrusion direction 0, 0, -1, as a CAD program's mirror
+// leaves it) has its x mirrored in the drawing's frame (DXF's arbitrary axis algorithm), and
+// its bulges turn the other way: it imports where it is seen, the same block as drawn plainly.
+TEST(CasesImport, AnEntitySeenFromBelowIsMirroredBack) {
+  const Poly plain{"MASONRY", true, {{0, 0, 0}, {1, 0, 0}, {1, 0.5, 0.4}, {0, 0.5, 0}}};
+  std::string mirrored = "0\nLWPOLYLINE\n5\n2C\n8\nMASONRY\n90\n4\n70\n1\n";
+  for (const auto& v : plain.v) {
+    mirrored += "10\n" + std::to_string(-v[0]) + "\n20\n" + std::to_string(v[1]) + "\n";
+    if (v[2] != 0) mirrored += "42\n" + std::to_string(-v[2]) + "\n";
+  }
+  mirrored += "210\n0\n220\n0\n230\n-1\n";
+  DxfImportOptions o;
+  o.density = 2000;
+  Scratch dir("mirror");
+  test::write(dir.path / "a.dxf", dxf({rect("SUPPORT", -2, -0.5, 2, 0), plain}));
+  test::write(dir.path / "b.dxf", dxf({rect("SUPPORT", -2, -0.5, 2, 0)}, 6, mirrored));
+  const Case a = import_dxf((dir.path / "a.dxf").string(), o).c, b = import_dxf((dir.path / "b.dxf").string(), o).c;
+  ASSERT_EQ(a.blocks[1].vertices.size(), b.blocks[1].vertices.size());
+  for (size_t k = 0; k < a.blocks[1].vertices.size(); ++k) EXPECT_NEAR((a.blocks[1].vertices[k] - b.blocks[1].vertices[k]).norm(), 0, 1e-6);
+}
+
+// An arc of more than a half circle (bulge above 1): its centre lies beyond the chord, and every
+// chord vertex lies on the circle. Three quarters of the unit circle from (1, 0) round to
+// (0, -1), counter-clockwise: bulge tan(270 deg / 4).
+TEST(CasesImport, ArcsBeyondAHalfCircleStayOnTheirCircle) {
+  const double bulge = std::tan(3 * M_PI / 8);
+  DxfImportOptions o;
+  o.density = 2000;
+  o.arc_tolerance = 1e-4;
+  Scratch dir("arc270");
+  test::write(dir.path / "a.dxf", dxf({rect("SUPPORT", -2, -1.5, 2, -1), {"MASONRY", true, {{1, 0, bulge}, {0, -1, 0}, {1, -1, 0}}}}));
+  const Case c = import_dxf((dir.path / "a.dxf").string(), o).c;
+  const auto& v = c.blocks[1].vertices;
+  int on_arc = 0;
+  for (const Vec2& p : v)
+    if ((p - Vec2(1, -1)).norm() > 1e-12) {
+      EXPECT_NEAR(p.norm(), 1.0, 1e-12) << p.transpose();
+      ++on_arc;
+    }
+  EXPECT_GT(on_arc, 20);
+  // Three quarters of the disc and the triangle (0,-1), (1,-1), (1,0) outside it, less the chords' segments.
+  const double exact = 0.75 * M_PI + 0.5 + 0.5;
+  EXPECT_LT(std::abs(signed_area(v)), exact);
+  EXPECT_GT(std::abs(signed_area(v)), exact - 1e-4 * 1.5 * M_PI);
+}
+
+// Texts name blocks in UTF-8 whatever the drawing's age: 8-bit code page text (Latin-1 here) and
+// AutoCAD's \U+XXXX escapes are converted.
+TEST(CasesImport, TextIsReadAsUtf8) {
+  const std::string texts = "0\nTEXT\n5\n50\n8\nMASONRY\n10\n0.5\n20\n0.5\n1\npi\xe8" "ce\n"
+                            "0\nTEXT\n5\n51\n8\nSUPPORT\n10\n0\n20\n-0.2\n1\nsol \\U+00E9\\U+20AC\n";
+  Scratch dir("utf8");
+  test::write(dir.path / "t.dxf", dxf({rect("SUPPORT", -2, -0.5, 2, 0), rect("MASONRY", 0, 0, 1, 1)}, 6, texts));
+  DxfImportOptions o;
+  o.density = 2000;
+  const Case c = import_dxf((dir.path / "t.dxf").string(), o).c;
+  EXPECT_EQ(c.blocks[0].id, "sol \xc3\xa9\xe2\x82\xac");
+  EXPECT_EQ(c.blocks[1].id, "pi\xc3\xa8" "ce");
+}
+
+// A wall drawn as a stack of bricks, each named by a text inside it: every brick gets its name
+// and the joints are those of the bond (each brick on the one below or the ground, and beside
+// its neighbours in the course): C x R + (C - 1) x R.
+TEST(CasesImport, ABrickWallDrawingImportsEveryBrickWithItsName) {
+  const int courses = 12, bricks = 15;
+  std::vector<Poly> polys = {rect("SUPPORT", -1, -0.3, bricks * 0.25 + 1, 0)};
+  std::string texts;
+  int handle = 0x1000;
+  for (int r = 0; r < courses; ++r)
+    for (int k = 0; k < bricks; ++k) {
+      polys.push_back(rect("MASONRY", k * 0.25, r * 0.125, (k + 1) * 0.25, (r + 1) * 0.125));
+      std::ostringstream t;
+      t << "0\nTEXT\n5\n" << std::hex << handle++ << std::dec << "\n8\nMASONRY\n10\n" << (k + 0.5) * 0.25 << "\n20\n" << (r + 0.5) * 0.125
+        << "\n1\nb" << r << "-" << k << "\n";
+      texts += t.str();
+    }
+  Scratch dir("wall");
+  test::write(dir.path / "w.dxf", dxf(polys, 6, texts));
+  DxfImportOptions o;
+  o.density = 2000;
+  const Case c = import_dxf((dir.path / "w.dxf").string(), o).c;
+  ASSERT_EQ(c.blocks.size(), static_cast<size_t>(1 + courses * bricks));
+  for (int r = 0; r < courses; ++r)
+    for (int k = 0; k < bricks; ++k) {
+      std::ostringstream id;
+      id << "b" << r << "-" << k;
+      EXPECT_EQ(c.blocks[1 + r * bricks + k].id, id.str());
+    }
+  EXPECT_EQ(detect_interfaces(c, c.prd.contact_tolerance).size(), static_cast<size_t>(bricks * courses + (bricks - 1) * courses));
+}
+
 TEST(CasesImport, DraftingGapsAreReportedAndSnapped) {
   // The block hovers 0.5 mm above the ground: no joint, so the case is refused with the gap named.
   const std::string text = dxf({rect("SUPPORT", -2, -0.5, 2, 0), rect("MASONRY", 0, 0.0005, 1, 1)});
@@ -226,9 +408,11 @@ TEST(CasesShow, SvgIsWellFormedWithOnePolygonPerBlock) {
   l.force = Vec2(0, -100);
   l.point = centroid(c.blocks[5].vertices);
   c.loads.push_back(l);
+  c.blocks[4].id = "v4 \xff\xfe \xef\xbf\xbf";  // bytes that are not UTF-8, and U+FFFF
   const std::string svg = case_svg(c);
   std::string why;
   EXPECT_TRUE(well_formed(svg, why)) << why;
+  EXPECT_TRUE(test::xml_well_formed(svg, why)) << why;
   auto count = [&](const std::string& what) {
     size_t n = 0;
     for (size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;

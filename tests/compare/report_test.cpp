@@ -13,6 +13,7 @@
 #include "compare/compare.hpp"
 #include "prd/prd.hpp"
 #include "compare/report.hpp"
+#include "xml.hpp"
 
 namespace masonry {
 namespace {
@@ -133,6 +134,28 @@ TEST(CompareReport, CaseTextIsEscapedEverywhere) {
     EXPECT_EQ(f.svg.find("<img"), std::string::npos) << f.file;
   }
   EXPECT_NE(html.find("&lt;script&gt;"), std::string::npos);  // shown as text
+}
+
+// Every figure (figures/structure-*.svg, thrust, capacity) is well-formed XML whatever the ids
+// and names hold: an ESC byte, a quote, a comma, a line break, bytes that are not UTF-8, U+FFFF
+// (expat, an XML parser independent of the writers, reads each).
+TEST(CompareReport, EveryFigureIsWellFormedXmlWhateverTheIds) {
+  Case c = load_case(kArch);
+  c.name = "arch\x1b[31m \"q\", \xff";
+  c.blocks[c.block_index("v3")].id = "v3\x1b[0m,\"x\"\n<&>";
+  c.blocks[c.block_index("right")].id = "right \xef\xbf\xbf \xc3";
+  c.blocks[c.block_index("left")].id = "left\r\x01";
+  PrdSettings s = PrdSettings::from_case(c);
+  const RunResult a = prd_run(c, s);
+  s.step = 0.002;
+  const RunResult b = prd_run(c, s);
+  const Report r = make_report(c, {{"PRD 1mm\x1b", &a, "a"}, {"PRD 2mm \xfe", &b, "b"}});
+  const auto figs = report_figures(r);
+  ASSERT_GE(figs.size(), 3u);
+  for (const Figure& f : figs) {
+    std::string why;
+    EXPECT_TRUE(test::xml_well_formed(f.svg, why)) << f.file << ": " << why;
+  }
 }
 
 bool have_chromium() { return run("command -v chromium >/dev/null 2>&1") == 0; }

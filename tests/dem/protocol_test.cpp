@@ -101,7 +101,8 @@ TEST(DemHold, ACollapseSlowerThanTheCapIsACollapse) {
   EXPECT_NEAR(h.time, s.hold_time, 1e-3);
 }
 
-// A run whose first settling cannot finish within the cap says so: undecided, no capacity.
+// A run whose first settling cannot finish within the cap (and its three extensions) says so:
+// undecided, no capacity.
 TEST(DemHold, UndecidedInitialStateIsNoCapacity) {
   Case c = incline_case(0.0, 35);
   c.dem.kn = 1e6;
@@ -184,6 +185,32 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
   s.confirm_collapse = false;
   const RunResult plain = dem_run(c, s);
   EXPECT_LT(plain.capacity, 0.5 * topple);
+}
+
+// A limit point is a located collapse. A wide block (b/h = 2) on a tilting slab slides when the
+// tilt reaches its friction angle, 20.1 degrees, and no sooner (closed form: tan theta =
+// tan phi). The slab turns 0.2 degrees per increment, holds are capped at 0.5 s and the
+// collapse drift is 0.2 m, so past the limit no trial shows a runaway within its cap: each
+// slides slowly on (0.1 degree past, the force along the slope is 0.2% of the weight, and local
+// damping 0.8 leaves a fifth of it), nearer the limit ever more slowly. The bracket still closes
+// on 20.1 degrees, and its upper end, which creeps without slowing down, locates the limit: the
+// run is a collapse, at the friction angle, and says it ended on a limit point.
+TEST(DemBracket, ALimitPointIsALocatedCollapse) {
+  Case c = test::tilt_case(0.4, 0.2, 20.1);
+  c.motion.step = 0.2 * kDeg;
+  c.motion.max_steps = 150;
+  c.dem.hold_time = 0.5;
+  DemSettings s = DemSettings::from_case(c);
+  s.collapse_drift = 0.2;  // m: half the block's width; the slide's drift is then far from it
+  const RunResult r = dem_run(c, s);
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
+  EXPECT_TRUE(r.limit_point) << r.message;
+  EXPECT_NE(r.message.find("limit point"), std::string::npos) << r.message;
+  ASSERT_TRUE(r.collapse_bracket);
+  for (const BracketTrial& t : r.collapse_bracket->trials) EXPECT_NE(t.end, "collapse") << t.d;
+  // Within the bracket, plus the equilibrium tolerance's reach of the friction limit (an
+  // unbalanced force of 1e-4 W along the slope is a tilt of 1e-4 / cos^2 20.1 = 1.1e-4 rad).
+  EXPECT_NEAR(r.capacity, 20.1 * kDeg, c.dem.bracket_fraction * c.motion.step + 2 * 1.1e-4);
 }
 
 // A collapse that happens during a move is a collapse. With damping 0.6 and a quarter of the

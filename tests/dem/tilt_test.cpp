@@ -69,4 +69,41 @@ TEST(DemTilt, ResultsSayRunningUntilTheRunEnds) {
   for (RunStatus st : seen) EXPECT_EQ(st, RunStatus::running);
 }
 
+// Four 0.25 m cubes stacked 1 m high on a slab that turns 5 mrad per increment (the joints at
+// the default E / h, stiff against these weights) topple as one at atan(b/H) = atan(0.25): the
+// part above any joint is as wide and lower, so it needs more tilt. Friction 35 degrees > 14:
+// no sliding. What this checks is the supports' acceleration: at the servo's relative rates
+// alone (up to 1.5 g at the top of the stack with these stiff joints; with joints ten times
+// softer the time step is longer and nothing of this shows) the stack rocked off one corner in
+// its first move, its top block walked 7.7 mm downhill by 0.24 rad, and it toppled 2% early.
+// With the supports' acceleration capped at 0.01 g the top block still walks about 1 mm
+// (partial slip at the joints' unloaded uphill corners under the servo's small chatter, gone at
+// 0.003 g), and the stack topples 0.17% early: within a quarter of the old error.
+TEST(DemLoading, AStackOnATurningBaseToppleAsOne) {
+  Case c = test::slab_case();
+  c.dem = DemOptions{};  // the default joints, E / h
+  for (int k = 0; k < 4; ++k) c.blocks.push_back(test::rect("s" + std::to_string(k), -0.125, 0.25 * k, 0.125, 0.25 * (k + 1), 2000, false));
+  SupportMotion m;
+  m.block = 0;
+  m.rotation = 1.0;
+  m.about = Vec2(0, -0.05);
+  c.motion.supports.push_back(m);
+  c.motion.step = 0.005;
+  c.motion.max_steps = 60;
+  const RunResult r = dem_run(c, DemSettings::from_case(c));
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
+  // Above: the bracket (1% of the step) and the equilibrium tolerance's reach of the tipping
+  // point (1e-4 r / (half the diagonal) for the whole stack, 3e-5 rad).
+  EXPECT_LE(r.capacity, std::atan(0.25) + 1e-4);
+  EXPECT_GE(r.capacity, std::atan(0.25) * (1 - 0.005));
+  // Every block turned with the slab until then: none walked along the joints by 2 mm.
+  const StepRecord& last = r.steps[r.steps.size() - 2];
+  for (int k = 0; k < 4; ++k) {
+    const double rad = 0.175 + 0.25 * k, th = last.d;
+    const Pose& p = last.poses[1 + k];
+    const double along = (p.x + rad * std::sin(th)) * std::cos(th) + (p.y + 0.05 - rad * std::cos(th)) * std::sin(th);
+    EXPECT_LT(std::abs(along), 0.002) << "block " << k;
+  }
+}
+
 }  // namespace

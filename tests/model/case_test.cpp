@@ -405,3 +405,74 @@ TEST(CaseErrors, EchoedInputIsEscapedAndShortened) {
 
 }  // namespace
 }  // namespace masonry
+
+namespace masonry {
+namespace {
+
+// A key given twice in one object is refused, at any depth, naming its path: nlohmann keeps the
+// last one silently, and `"step": 0.0175, "step": 0.5` ran the tilting block at 0.5 (capacity 0).
+TEST(CaseErrors, DuplicateKeysAreRefusedNamingTheirPath) {
+  const std::string tilt = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json";
+  const Case block = load_case(tilt);
+  std::string text = case_to_json(block);
+  const size_t at = text.find("\"step\":");
+  ASSERT_NE(at, std::string::npos);
+  const std::string twice = text.substr(0, at) + "\"step\": 0.0175, " + text.substr(at);
+  expect_error(twice, {"field 'motion.step' given twice"});
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1, "density": 2})"),
+               {"field 'blocks[].density' given twice"});
+  expect_error(R"({"format": "masonry-case/1", "format": "masonry-case/1", "blocks": []})", {"field 'format' given twice"});
+  // Equal keys in different objects are no duplicates.
+  EXPECT_EQ(error_of(with_blocks(std::string(kGround) + kBlock)), "");
+}
+
+TEST(CaseErrors, TheFormatFieldIsRequired) {
+  std::string text = with_blocks(std::string(kGround) + kBlock);
+  EXPECT_EQ(error_of(text), "");
+  text.replace(text.find(R"("format": "masonry-case/1", )"), std::string(R"("format": "masonry-case/1", )").size(), "");
+  expect_error(text, {"field 'format' is required", "masonry-case/1"});
+}
+
+// A count beyond the range names it and the range, not the type: 2147483647 is an integer.
+TEST(CaseErrors, MaxStepsBeyondItsRangeSaysSo) {
+  for (const char* n : {"2147483647", "100000001", "18446744073709551615", "-1"}) {
+    expect_error(with_blocks(std::string(kGround) + kBlock, std::string(R"(, "motion": {"max_steps": )") + n + "}"),
+                 {"motion", "field 'max_steps' = " + std::string(n) + " is outside [0, 100000000]"});
+  }
+  expect_error(with_blocks(std::string(kGround) + kBlock, R"(, "motion": {"max_steps": 2.5})"), {"field 'max_steps' must be a whole number"});
+  EXPECT_EQ(error_of(with_blocks(std::string(kGround) + kBlock, R"(, "motion": {"max_steps": 100000000})")), "");
+}
+
+// One range for the time-step factor, the DEM's stability bound (0, 1], whichever command loads
+// the case: `prd` accepted 2 while `dem` refused it.
+TEST(CaseErrors, TheTimestepFactorHasOneRangeForEveryCommand) {
+  const Case block = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json");
+  for (double f : {2.0, 1.0000001, 0.0, -1.0}) {
+    try {
+      with_option(block, "dem.timestep_factor", f);
+      ADD_FAILURE() << f << " accepted";
+    } catch (const CaseError& e) {
+      EXPECT_NE(std::string(e.what()).find("field 'timestep_factor'"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("(0, 1]"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(with_option(block, "dem.timestep_factor", 1.0).dem.timestep_factor, 1.0);
+}
+
+// A block no wider than the contact tolerance standing on its end touches the ground over less
+// than the tolerance: no joint, and the message says why instead of "touches no other block".
+TEST(CaseErrors, ABlockWhoseContactIsShorterThanTheToleranceIsToldSo) {
+  const std::string thin = R"(, {"id": "needle", "vertices": [[0, 0], [1e-6, 0], [1e-6, 1], [0, 1]], "density": 2000})";
+  expect_error(with_blocks(std::string(kGround) + thin),
+               {"block 'needle'", "meets block 'ground' only at a point or over less than the contact tolerance (1e-05 m",
+                "the block is 1e-06 by 1 m"});
+  // A triangle standing on its apex meets the ground at a point.
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "apex", "vertices": [[0, 0], [1, 1], [-1, 1]], "density": 2000})"),
+               {"block 'apex'", "meets block 'ground' only at a point"});
+  // Far from everything: as before.
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "far", "vertices": [[0, 1], [1, 1], [1, 2], [0, 2]], "density": 1})"),
+               {"block 'far'", "touches no other block"});
+}
+
+}  // namespace
+}  // namespace masonry

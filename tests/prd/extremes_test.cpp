@@ -88,7 +88,7 @@ TEST(PrdExtremes, BlocksWithAspectRatioOfOneHundred) {
   for (const Shape& s : {Shape{0.01, 1.0, 1e-5}, Shape{1.0, 0.01, 1e-3}, Shape{0.1, 10.0, 1e-5}}) {
     char json[1024];
     std::snprintf(json, sizeof json,
-                  R"({"blocks": [{"id": "g", "vertices": [[-20, -1], [20, -1], [20, 0], [-20, 0]], "support": true},
+                  R"({"format": "masonry-case/1", "blocks": [{"id": "g", "vertices": [[-20, -1], [20, -1], [20, 0], [-20, 0]], "support": true},
                      {"id": "b", "vertices": [[0, 0], [%.17g, 0], [%.17g, %.17g], [0, %.17g]], "density": 2000}],
                      "motion": {"step": %.17g, "max_steps": 2000000,
                                 "supports": [{"block": "g", "rotation": 1.0, "about": [-20, -1]}]}})",
@@ -134,7 +134,7 @@ TEST(PrdExtremes, AdaptiveRunsScaleKeepTheirToleranceAndTip) {
     EXPECT_NEAR(r.capacity, fine.capacity, 2 * tol + 2e-5) << tol;
   }
 
-  const Case c = parse_case(R"({"blocks": [{"id": "g", "vertices": [[-20, -1], [20, -1], [20, 0], [-20, 0]], "support": true},
+  const Case c = parse_case(R"({"format": "masonry-case/1", "blocks": [{"id": "g", "vertices": [[-20, -1], [20, -1], [20, 0], [-20, 0]], "support": true},
       {"id": "b", "vertices": [[0, 0], [0.01, 0], [0.01, 1], [0, 1]], "density": 2000}],
       "motion": {"step": 1e-3, "max_steps": 1000, "supports": [{"block": "g", "rotation": 1.0, "about": [-20, -1]}]},
       "prd": {"adaptive": true, "event_tolerance": 1e-6}})", "slender.json");

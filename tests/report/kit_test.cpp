@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "report/document.hpp"
 #include "report/escape.hpp"
@@ -12,6 +13,7 @@
 #include "report/html.hpp"
 #include "report/svg.hpp"
 #include "report/table.hpp"
+#include "xml.hpp"
 
 namespace masonry {
 namespace {
@@ -32,6 +34,26 @@ TEST(ReportEscape, MarkupFromACaseIsText) {
   EXPECT_EQ(md_escape("# not a heading, #2 stays"), "\\# not a heading, #2 stays");
   // A code span cannot hold a backtick, and a table cell no bar.
   EXPECT_EQ(md_code("a`b|c"), "a'b/c");
+}
+
+// XML 1.0 allows no control character but tab and line breaks, no byte that is not UTF-8 and not
+// U+FFFE or U+FFFF, even as a character reference: an id with an ESC byte made the figures
+// ill-formed. Whatever the text, element and attribute content stays well-formed (expat).
+TEST(ReportEscape, XmlStaysWellFormedWhateverTheText) {
+  const std::vector<std::string> texts = {
+      "v\x1b[31m3", std::string("nul\0byte", 8), "bell\a, bs\b, vt\v, ff\f", "tab\tnl\ncr\r", "\xff\xfe latin-1 \xe9t\xe9",
+      "cut \xc3", "overlong \xc0\xaf", "surrogate \xed\xa0\x80", "U+FFFF \xef\xbf\xbf and U+FFFE \xef\xbf\xbe",
+      "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\xa7\xb1", "<&\"'>",
+  };
+  for (const std::string& t : texts) {
+    const std::string doc = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg a=\"" + xml_escape(t) + "\"><title>" + xml_escape(t) + "</title></svg>";
+    std::string why;
+    EXPECT_TRUE(test::xml_well_formed(doc, why)) << why << ": " << doc;
+  }
+  // What is kept stays as it was: valid UTF-8 and the white space XML allows.
+  EXPECT_EQ(xml_escape("caf\xc3\xa9 \xf0\x9f\xa7\xb1\t"), "caf\xc3\xa9 \xf0\x9f\xa7\xb1\t");
+  EXPECT_EQ(xml_escape("a\x1b"), "a\\x1b");
+  EXPECT_EQ(xml_escape("\xff"), "\xef\xbf\xbd");
 }
 
 TEST(ReportFormat, NoNanAndNoExponent) {

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "common.hpp"
@@ -50,6 +51,54 @@ TEST(RunsWriting, EveryFinishedStepReachesTheDirectoryAndTheEndAlways) {
   EXPECT_EQ(disk.status, r.status);
   EXPECT_DOUBLE_EQ(disk.capacity, r.capacity);
   EXPECT_TRUE(fs::exists(scratch.path / "steps.csv"));
+}
+
+// A run killed at any moment leaves a results.json that agrees with itself: its capacity is its
+// last equilibrium record (the DEM hands a step out as it records it, and once wrote capacity
+// 0.028 m beside its equilibrium record at 0.029 m). Read raw, as another program would.
+TEST(RunsWriting, TheFileAtEveryStepHasTheCapacityOfItsLastEquilibrium) {
+  const test::Scratch scratch("runs-killed");
+  const Case c = with_option(load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json"), "motion.max_steps", 6);
+  int checked = 0;
+  RunOutput out;
+  out.dir = scratch.path.string();
+  out.on_step = [&](const RunResult&) {
+    const nlohmann::json j = nlohmann::json::parse(test::read(scratch.path / "results.json"));
+    ASSERT_EQ(j["stopped"], "running");
+    double last = -1;
+    int equilibria = 0;
+    for (const auto& s : j["steps"])
+      if (s.value("settled", false)) last = s["d"].get<double>(), ++equilibria;
+    ASSERT_GE(last, 0);
+    EXPECT_EQ(j["capacity"].get<double>(), last);
+    EXPECT_EQ(j["stable_steps"].get<int>(), equilibria - 1);  // the start's settling is no step
+    checked += last > 0;
+  };
+  const RunResult r = run_case(c, Method::dem, out);
+  EXPECT_GE(checked, 3);
+  EXPECT_EQ(r.stable_steps, 6);
+}
+
+// A capacity run needs a loading path: a case whose supports do not move is refused before any
+// step (it ran 1000 steps and reported "max_steps, capacity 1 m"), for both methods and studies.
+TEST(RunsRefusal, SupportsThatDoNotMoveAreRefused) {
+  Case c = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json");
+  c.motion.supports.clear();
+  for (Method m : {Method::prd, Method::dem}) {
+    try {
+      run_case(c, m);
+      ADD_FAILURE() << method_name(m) << " ran";
+    } catch (const CaseError& e) {
+      EXPECT_NE(std::string(e.what()).find("no support moves"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(run_case_in_study(c, m).status, RunStatus::error);
+  }
+  c = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json");
+  c.motion.supports[0].rotation = 0;
+  EXPECT_THROW(run_case(c, Method::prd), CaseError);
+  // No step asked for: the structure only settles (validate's "stands").
+  c.motion.max_steps = 0;
+  EXPECT_EQ(run_case(c, Method::prd).status, RunStatus::max_steps);
 }
 
 // A study goes on past a run its solver refuses: the refusal is a run stopped by "error", with

@@ -158,10 +158,11 @@ TEST(SweepTable, ReadsBackWhatItWrites) {
   SweepTable t(p.runs.size());
   t[0] = row(p, 0, RunStatus::collapse, 0.45);
   t[0]->required_friction_angle = 26.0;
+  t[0]->hinges = "block/slab:A";
   t[1] = row(p, 1, RunStatus::collapse, 0.3490658503988659);
   t[2] = row(p, 2, RunStatus::error, 0, "dem: bad, \"very\" bad");
   const std::string csv = sweep_csv(p, t);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "run,id,method,dem.friction_angle,capacity,stopped,time_s,diff_prd,required_friction_angle,message");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "run,id,method,dem.friction_angle,capacity,stopped,time_s,diff_prd,required_friction_angle,hinges,message");
   const SweepTable back = read_sweep_csv(p, csv, "sweep.csv");
   ASSERT_EQ(back.size(), 4u);
   for (int i = 0; i < 3; ++i) {
@@ -174,6 +175,7 @@ TEST(SweepTable, ReadsBackWhatItWrites) {
     }
   }
   EXPECT_EQ(back[0]->required_friction_angle, 26.0);
+  EXPECT_EQ(back[0]->hinges, "block/slab:A");
   EXPECT_FALSE(back[3]);
   EXPECT_EQ(sweep_csv(p, back), csv);
   // diff_prd = (cap_dem - cap_prd) / cap_prd, in the DEM row; none for the failed run.
@@ -189,6 +191,38 @@ TEST(SweepTable, ReadsBackWhatItWrites) {
   bad.replace(bad.find(",collapse,", bad.find(p.runs[1].id)), 10, ",colapse,");
   EXPECT_FALSE(read_sweep_csv(p, bad, "sweep.csv")[1]);
   EXPECT_TRUE(read_sweep_csv(p, bad, "sweep.csv")[0]);
+}
+
+TEST(SweepTable, ARowNoRunCanGiveIsRunAgain) {
+  // A row someone edited, or a program other than this one wrote: a capacity below 0, beyond
+  // the end of the run's loading path (step x max_steps: 60 x 1 degree of tilt here) or not a
+  // number, a negative time, a friction angle beyond 90 degrees. Its run is done again, as a
+  // NaN row's always was; the others are kept.
+  const SweepPlan p = plan_sweep(input("{" + kHead + R"("vary": {"dem.friction_angle": [20, 30, 40]}})"));
+  const double end = p.base.motion.step * p.base.motion.max_steps;
+  SweepTable t(p.runs.size());
+  for (int i = 0; i < 4; ++i) t[i] = row(p, i, RunStatus::collapse, 0.3);
+  const std::string good = sweep_csv(p, t);
+  const auto with = [&](int i, const std::string& column, const std::string& value) {
+    auto rows = test::csv_rows(good);
+    rows[i + 1][test::column(rows[0], column)] = value;
+    std::string csv;
+    for (const auto& r : rows) {
+      for (size_t k = 0; k < r.size(); ++k) csv += (k ? "," : "") + r[k];
+      csv += "\n";
+    }
+    return read_sweep_csv(p, csv, "sweep.csv");
+  };
+  EXPECT_TRUE(with(1, "capacity", "0.3")[1]);
+  EXPECT_TRUE(with(1, "capacity", json(end).dump())[1]);  // the path's end: a max_steps run's answer
+  for (const std::string& bad : std::vector<std::string>{"-1e308", "-0.001", "1e308", json(end * 1.001).dump(), "nan", "inf", ""}) {
+    const SweepTable back = with(1, "capacity", bad);
+    EXPECT_FALSE(back[1]) << bad;
+    EXPECT_TRUE(back[0] && back[2] && back[3]) << bad;
+  }
+  EXPECT_FALSE(with(2, "time_s", "-1")[2]);
+  EXPECT_FALSE(with(0, "required_friction_angle", "91")[0]);
+  EXPECT_TRUE(with(0, "required_friction_angle", "26")[0]);
 }
 
 TEST(SweepTable, RefusesATableOfAnotherSweep) {

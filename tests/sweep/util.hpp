@@ -4,7 +4,9 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -71,6 +73,36 @@ inline bool says_nan(const std::string& text) {
     if (n && (i == 0 || !letter(text[i - 1])) && (i + 3 == text.size() || !letter(text[i + 3]))) return true;
   }
   return false;
+}
+
+// "sweep: [k/n] run I ..." progress lines: the runs an invocation did.
+inline std::set<int> runs_done(const std::string& progress) {
+  std::set<int> s;
+  std::istringstream in(progress);
+  for (std::string line; std::getline(in, line);) {
+    const size_t at = line.find("] run ");
+    if (line.rfind("sweep: [", 0) == 0 && at != std::string::npos) s.insert(std::stoi(line.substr(at + 6)));
+  }
+  return s;
+}
+
+// mpirun as the tests need it: as root (CI runs as root), more ranks than cores allowed, and
+// every byte on this machine (shared memory between ranks, no cross-memory attach, which
+// containers forbid; loopback for the launcher).
+//
+// In the sanitized build, Open MPI's runtime keeps memory to the end of the process that
+// LeakSanitizer reports as leaks (libmpi, libopen-rte, libopen-pal, its libevent and its
+// components, mca_*.so): those are suppressed, for the ranks only. Full stack unwinding and
+// components kept loaded are what let the suppressions see Open MPI's frames; any leak without
+// one of them in its stack is still reported.
+inline std::string mpirun(int ranks, const std::filesystem::path& scratch) {
+  const std::filesystem::path supp = scratch / "openmpi-lsan.supp";
+  write(supp, "leak:libmpi.so\nleak:libopen-rte.so\nleak:libopen-pal.so\nleak:libevent_core\nleak:mca_\n");
+  const char* asan = std::getenv("ASAN_OPTIONS");
+  return "ASAN_OPTIONS='" + std::string(asan ? asan : "") + ":fast_unwind_on_malloc=0' LSAN_OPTIONS='suppressions=" + supp.string() +
+         "' mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(ranks) +
+         " --mca btl self,vader --mca btl_vader_single_copy_mechanism none --mca oob_tcp_if_include lo"
+         " --mca mca_base_component_disable_dlclose 1 ";
 }
 
 inline size_t column(const std::vector<std::string>& header, const std::string& name) {

@@ -173,7 +173,7 @@ TEST(ValidateCommand, ExitCodesTablesAndFiles) {
   const std::string table = test::read(out);
   EXPECT_NE(table.find("4 of 4 passed"), std::string::npos) << table;
   EXPECT_NE(table.find("source"), std::string::npos);
-  EXPECT_NE(test::read(err).find("validate [2/2] arch-stands"), std::string::npos);  // progress lines
+  EXPECT_NE(test::read(err).find("validate: [2/2] arch-stands"), std::string::npos);  // progress lines
   const auto j = nlohmann::json::parse(test::read(json));
   EXPECT_EQ(j["rows"].size(), 4u);
   EXPECT_EQ(j["passed"], 4);

@@ -1,0 +1,69 @@
+// The hinges at collapse of a sweep's run: what groups the samples by collapse mechanism.
+#include <cctype>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "compare/compare.hpp"
+#include "model/interfaces.hpp"
+#include "sweep/sweep.hpp"
+
+namespace masonry {
+
+std::string hinges_at_collapse(const Case& c, const RunResult& r) {
+  std::vector<std::string> labels;
+  if (r.collapse) {
+    // PRD's collapse mechanism: the corners its last LP's unbounded motion opens. A joint with
+    // one open corner is a hinge about the other (named as compare/ names hinges); one with both
+    // open separates.
+    std::map<int, std::vector<int>> open;  // joint -> open corners
+    for (const CornerRef& o : r.collapse->mechanism.open_corners) open[o.joint].push_back(o.corner);
+    for (const auto& [joint, corners] : open) {
+      if (joint < 0 || joint >= int(r.joints.size())) continue;
+      const JointInfo& j = r.joints[joint];
+      if (corners.size() == 1) {
+        labels.push_back(corner_name(c, j.i, j.j, 1 - corners[0]));
+      } else {
+        std::string name = corner_name(c, j.i, j.j, 0);
+        labels.push_back(name.substr(0, name.size() - 2) + ":open");
+      }
+    }
+  }
+  if (labels.empty()) {
+    // The hinges of the last equilibrium (a PRD whose mechanism LP found none, a DEM); a DEM's
+    // beyond the gaps it settled with (compare/'s rule: elastic redistribution opens gaps that
+    // wide anywhere).
+    const std::vector<const StepRecord*> stable = stable_records(r);
+    if (stable.empty()) return "";
+    for (const Hinge& h : hinges_of(c, r, *stable.back(), r.method == "dem" ? settled_gap(r) : 0.0)) labels.push_back(h.label);
+  }
+  std::string s;
+  for (const std::string& l : labels) s += (s.empty() ? "" : " ") + l;
+  return s;
+}
+
+std::string members_of(const std::string& hinges) {
+  const auto member = [](std::string id) {
+    size_t end = id.size();
+    while (end > 0 && std::isdigit(static_cast<unsigned char>(id[end - 1]))) --end;
+    if (end == id.size() || end == 0) return id;  // no number, or nothing but one
+    if (id[end - 1] == '-' && end > 1) --end;
+    return id.substr(0, end);
+  };
+  std::set<std::string> out;
+  std::istringstream in(hinges);
+  for (std::string h; in >> h;) {
+    const size_t slash = h.find('/'), colon = h.rfind(':');
+    if (slash == std::string::npos || colon == std::string::npos || colon < slash) {
+      out.insert(h);
+      continue;
+    }
+    const std::string a = member(h.substr(0, slash)), b = member(h.substr(slash + 1, colon - slash - 1));
+    out.insert(a == b ? a : a + "/" + b);
+  }
+  std::string s;
+  for (const std::string& m : out) s += (s.empty() ? "" : " ") + m;
+  return s;
+}
+
+}  // namespace masonry

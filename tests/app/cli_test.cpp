@@ -1,0 +1,98 @@
+// The command line as one tool (README, "Commands"): a mistyped subcommand or option is refused
+// with the nearest name, every subcommand that prints progress takes --quiet and then says
+// nothing but warnings and why it failed, and progress lines give the time left.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common.hpp"
+
+namespace masonry {
+namespace {
+
+using test::Scratch;
+const std::string kExe = MASONRY_EXE;
+const std::string kTilt = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json";
+
+struct Ran {
+  int rc = -1;
+  std::string err;
+};
+Ran run(const std::string& args, const Scratch& dir) {
+  const std::string err = (dir.path / "stderr").string();
+  Ran r;
+  r.rc = test::run(kExe + " " + args + " >/dev/null 2>" + err);
+  r.err = test::read(err);
+  return r;
+}
+
+TEST(CommandLine, AMistypedNameIsRefusedWithTheNearestOne) {
+  Scratch dir("cli-typo");
+  struct Typo {
+    std::string args, needle;
+  };
+  const std::vector<Typo> typos = {
+      {"comapre", "masonry: 'comapre' is not a command; did you mean 'compare'?"},
+      {"vaildate --quick", "did you mean 'validate'?"},
+      {"cases improt x.dxf --out y.json", "masonry cases: 'improt' is not a command; did you mean 'import'?"},
+      {"dem " + kTilt + " --out o --frition 30", "masonry dem: unknown option '--frition'; did you mean '--friction'?"},
+      {"prd " + kTilt + " --out o --max-step=0.1 --stpe 0.01", "did you mean '--step'?"},
+      {"compare " + kTilt + " --out o --tolerance f.json", "did you mean '--tolerances'?"},
+  };
+  for (const Typo& t : typos) {
+    const Ran r = run(t.args, dir);
+    EXPECT_EQ(r.rc, 2) << t.args;
+    EXPECT_NE(r.err.find(t.needle), std::string::npos) << t.args << " | " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  }
+  // Nothing near: refused all the same, without a guess.
+  const Ran far = run("xyzzy", dir);
+  EXPECT_EQ(far.rc, 2);
+  EXPECT_NE(far.err.find("'xyzzy' is not a command"), std::string::npos) << far.err;
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+  // Help stays help.
+  EXPECT_EQ(run("--help", dir).rc, 0);
+  EXPECT_EQ(run("dem --help", dir).rc, 0);
+}
+
+TEST(CommandLine, QuietSaysNothingButWhyItFailed) {
+  Scratch dir("cli-quiet");
+  const std::string out = (dir.path / "o").string();
+  // Every subcommand that prints progress takes --quiet.
+  for (const std::string sub : {"prd", "dem", "compare", "demo", "sweep", "tradeoff", "validate"})
+    EXPECT_EQ(test::run(kExe + " " + sub + " --help | grep -q -- --quiet"), 0) << sub << " has no --quiet";
+  const Ran prd = run("prd " + kTilt + " --out " + out + " --quiet", dir);
+  EXPECT_EQ(prd.rc, 0);
+  EXPECT_EQ(prd.err, "");
+  const Ran loud = run("prd " + kTilt + " --out " + out, dir);
+  EXPECT_EQ(loud.rc, 0);
+  EXPECT_NE(loud.err.find("prd: step 1, d = 0.0174533 m of at most 1.0472 m"), std::string::npos) << loud.err;
+  EXPECT_NE(loud.err.find(" s, at most "), std::string::npos) << loud.err;
+  EXPECT_NE(loud.err.find("collapse, capacity"), std::string::npos) << loud.err;
+  // compare --quiet: no progress, no summary (it printed its summary before).
+  const Ran cmp = run("compare " + kTilt + " --out " + out + "-c --quiet", dir);
+  EXPECT_EQ(cmp.rc, 0) << cmp.err;
+  EXPECT_EQ(cmp.err, "");
+  // A refusal is said whatever --quiet says.
+  const Ran bad = run("prd " + kTilt + " --out " + out + " --quiet --step -1", dir);
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_NE(bad.err.find("field 'step'"), std::string::npos) << bad.err;
+}
+
+// A case whose supports do not move is refused by the capacity commands (exit 2, one line),
+// where `masonry prd` ran 1000 steps to "max_steps, capacity 1 m" with exit code 0.
+TEST(CommandLine, SupportsThatDoNotMoveAreRefused) {
+  Scratch dir("cli-static");
+  std::string text = test::read(kTilt);
+  const size_t a = text.find("\"supports\""), b = text.find(']', text.find(']', text.find(']', a) + 1) + 1);
+  ASSERT_NE(a, std::string::npos);
+  text = text.substr(0, a) + "\"supports\": []" + text.substr(b + 1);
+  test::write(dir.path / "still.json", text);
+  const Ran r = run("prd " + (dir.path / "still.json").string() + " --out " + (dir.path / "o").string(), dir);
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_NE(r.err.find("no support moves"), std::string::npos) << r.err;
+  EXPECT_EQ(run("check " + (dir.path / "still.json").string(), dir).rc, 0);
+}
+
+}  // namespace
+}  // namespace masonry
