@@ -162,6 +162,7 @@ void write_results(const std::string& dir, const RunResult& r, const Case& c);
 // Reads a results.json (masonry-results/1) written for case `c` back into a RunResult; throws
 // std::runtime_error naming the file and field for anything that does not fit the case.
 RunResult parse_results(const std::string& text, const Case& c, const std::string& source);
+// load_results reads `path`, or `path`.xz where only that is there (read_text_or_xz).
 RunResult load_results(const std::string& path, const Case& c);
 
 }  // namespace masonry
