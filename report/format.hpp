@@ -40,6 +40,12 @@ inline std::string secs(double s) {
   return number(s, "%.2g", s);
 }
 
+// A duration as a reader says it: "3.8 ms" below a second, "12.5 s" above.
+inline std::string duration(double s) {
+  if (std::abs(s) < 1) return number(s, "%.2g ms", s * 1000);
+  return secs(s) + " s";
+}
+
 // An SVG coordinate in px: one decimal; a non-finite one (an empty range) at 0 rather than a
 // "n/a" that would break the drawing.
 inline std::string px(double x) {
