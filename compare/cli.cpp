@@ -155,8 +155,9 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
   for (const RunResult& r : results) errored = errored || !located(r.status);
   for (size_t k = 0; k < rep.comparisons.size(); ++k) {
     const Comparison& cmp = rep.comparisons[k];
-    std::fprintf(stderr, "compare: %s: %s %.4g m, %s %.4g m (%+.1f%%), thrust difference max %.3g W rms %.3g W, times %.3g s / %.3g s\n",
-                 c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, cmp.b.label.c_str(), cmp.b.capacity, cmp.capacity_rel_diff * 100,
+    const char* unit = cmp.d_unit.c_str();
+    std::fprintf(stderr, "compare: %s: %s %.4g %s, %s %.4g %s (%+.1f%%), thrust difference max %.3g W rms %.3g W, times %.3g s / %.3g s\n",
+                 c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, unit, cmp.b.label.c_str(), cmp.b.capacity, unit, cmp.capacity_rel_diff * 100,
                  cmp.thrust_max_diff, cmp.thrust_rms_diff, cmp.a.time_s, cmp.b.time_s);
     for (const std::string& v : rep.violations[k]) std::cerr << "compare: limit exceeded: " << v << "\n";
     failed = failed || !rep.violations[k].empty();

@@ -208,6 +208,20 @@ double settled_gap(const RunResult& r) {
   return g;
 }
 
+std::string milli(const std::string& unit) { return std::string(1, 'm').append(unit); }  // (not "m" +: GCC 12's false -Wrestrict)
+
+std::string joint_motion_text(const JointMotion& m) {
+  return "turns " + fmt(m.rotation * 1e3, 3) + " mrad, opens " + fmt(m.open_a * 1e3, 3) + " mm at A and " + fmt(m.open_b * 1e3, 3) +
+         " mm at B, slides " + fmt(m.slip * 1e3, 3) + " mm";
+}
+
+std::string interval_text(const MotionCheck& m, const std::string& d_unit, const std::string& label_a, const std::string& label_b) {
+  const auto d = [&](double x) { return fmt(x * 1e3, 4); };
+  if (m.collapse)
+    return "at collapse (" + label_a + " from d = " + d(m.a_from) + ", " + label_b + " from d = " + d(m.b_from) + " " + milli(d_unit) + ")";
+  return "from d = " + d(m.from) + " to " + d(m.to) + " " + milli(d_unit);
+}
+
 std::string joints_text(int n) { return std::to_string(n) + (n == 1 ? " joint" : " joints"); }
 
 std::vector<RingSpot> ring_neighbours(const Case& c, const RunResult& r, int joint, int corner, int shift) {
@@ -360,11 +374,16 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
   k.d_max = std::max(k.d_max, 0.0);
 
   // Common grid: every record of either run inside [0, d_max], so neither run's jumps are
-  // smoothed away by a coarser grid; points closer than a billionth of the range are one.
+  // smoothed away by a coarser grid (or the coarser run's records alone, ThrustGrid); points
+  // closer than a billionth of the range are one.
   std::vector<double> grid;
-  for (const auto* recs : {&ra, &rb})
+  const auto in_range = [&](const StepRecord* s) { return s->d >= 0 && s->d <= k.d_max * (1 + 1e-12) + 1e-15; };
+  const auto count = [&](const std::vector<const StepRecord*>& recs) { return std::count_if(recs.begin(), recs.end(), in_range); };
+  std::vector<const std::vector<const StepRecord*>*> sources{&ra, &rb};
+  if (o.thrust_grid == ThrustGrid::coarser_run) sources = {count(rb) < count(ra) ? &rb : &ra};
+  for (const auto* recs : sources)
     for (const StepRecord* s : *recs)
-      if (s->d >= 0 && s->d <= k.d_max * (1 + 1e-12) + 1e-15) grid.push_back(std::min(s->d, k.d_max));
+      if (in_range(s)) grid.push_back(std::min(s->d, k.d_max));
   std::sort(grid.begin(), grid.end());
   const double merge = 1e-9 * std::max(k.d_max, 1e-9);
   for (double x : grid)
@@ -428,6 +447,12 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
   const double xc = 0.5 * (lo.x() + hi.x());
   const double tol = 1e-6 * std::max(1.0, scene_size(c));
   k.hinge_gap = std::max(settled_gap(a), settled_gap(b));
+  k.d_unit = path_unit(c);
+  if (k.d_max > 0 || (!ra.empty() && !rb.empty())) {
+    std::vector<double> ds;
+    for (double f : o.hinge_fractions) ds.push_back(f * k.d_max);
+    k.motion = mechanism_checks(c, a, b, ds);
+  }
   if (!ra.empty() && !rb.empty()) {
     std::set<double> done;
     for (double f : o.hinge_fractions) {
@@ -458,6 +483,7 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
 ojson to_json(const Comparison& k) {
   ojson j;
   j["case"] = k.case_name;
+  j["d_unit"] = k.d_unit;
   j["a"] = summary_json(k.a);
   j["b"] = summary_json(k.b);
   j["total_weight"] = json_number(k.total_weight);
@@ -513,6 +539,28 @@ ojson to_json(const Comparison& k) {
                   {"joints_apart", apart(h.shift)}});
   }
   j["hinges"] = {{"symmetric", k.symmetric}, {"min_opening", json_number(k.hinge_gap)}, {"max_joints_apart", kMaxHingeShift}, {"checks", hc}};
+  ojson ma = ojson::array();
+  const auto motion_json = [](const JointMotion& m) {
+    return ojson{{"rotation", json_number(m.rotation)}, {"open_a", json_number(m.open_a)}, {"open_b", json_number(m.open_b)}, {"slip", json_number(m.slip)}};
+  };
+  for (const MotionCheck& m : k.motion) {
+    ojson differ = ojson::array();
+    for (const MotionDiff& x : m.differ)
+      differ.push_back({{"joint", x.label}, {"share", json_number(x.share)}, {"weight", json_number(x.weight)}, {"a", motion_json(x.a)}, {"b", motion_json(x.b)}});
+    ma.push_back({{"from", json_number(m.from)},
+                  {"to", m.collapse ? ojson(nullptr) : json_number(m.to)},
+                  {"collapse", m.collapse},
+                  {"a_from", json_number(m.a_from)},
+                  {"a_to", json_number(m.a_to)},
+                  {"b_from", json_number(m.b_from)},
+                  {"b_to", json_number(m.b_to)},
+                  {"a_moves", m.a_moves},
+                  {"b_moves", m.b_moves},
+                  {"agreement", json_number(m.agreement)},
+                  {"mirror", m.mirror},
+                  {"differ_most", differ}});
+  }
+  j["mechanism_agreement"] = ma;
   j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }
@@ -530,6 +578,18 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
     if (!std::isfinite(m) || m > *t.thrust)
       out.push_back("thrust: largest support reaction difference " + fmt(m, 3) + " W (" + k.thrust_max_where + " at d = " +
                     fmt(k.thrust_max_d) + " m) > limit " + fmt(*t.thrust, 3) + " W");
+  }
+  if (t.mechanism) {
+    if (k.motion.empty()) out.push_back("mechanism: no common range to compare the runs' motions on");
+    for (const MotionCheck& m : k.motion) {
+      if (!(m.agreement < *t.mechanism)) continue;  // NaN: not determined (a run whose joints do not move)
+      std::string most;
+      for (const MotionDiff& x : m.differ)
+        most += (most.empty() ? "" : "; ") + x.label + " (" + k.a.label + " " + joint_motion_text(x.a) + ", " + k.b.label + " " +
+                joint_motion_text(x.b) + (m.mirror ? ", mirrored" : "") + ")";
+      out.push_back("mechanism: " + interval_text(m, k.d_unit, k.a.label, k.b.label) + " the joints move differently: agreement " +
+                    fmt(m.agreement, 3) + " < least " + fmt(*t.mechanism, 3) + "; most at " + most);
+    }
   }
   if (t.hinges) {
     if (k.hinges.empty()) out.push_back("hinges: no common range to compare hinge locations on");
@@ -569,6 +629,10 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
       if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
         throw std::runtime_error(source + ": \"" + key + "\" must be a non-negative number");
       (key == "capacity" ? t.capacity : t.thrust) = v.get<double>();
+    } else if (key == "mechanism") {
+      if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1))
+        throw std::runtime_error(source + ": \"mechanism\" must be a number from 0 to 1 (the least mechanism agreement)");
+      t.mechanism = v.get<double>();
     } else if (key == "hinges") {
       if (!v.is_boolean()) throw std::runtime_error(source + ": \"hinges\" must be true or false");
       t.hinges = v.get<bool>();
@@ -579,7 +643,7 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
     } else if (key == "comment" || key == "description") {
       // free text for people
     } else {
-      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, thrust, hinges, hinge_shift, comment)");
+      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, thrust, mechanism, hinges, hinge_shift, comment)");
     }
   }
   return t;

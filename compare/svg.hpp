@@ -40,12 +40,13 @@ std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const
 // panel (class "cursor") and data-x0 / data-sx (px at d = 0, px per m) for a script to move it.
 std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult& b, bool cursor = false);
 
-// Horizontal bars: capacity (mm) of each run, value printed at the bar's end.
+// Horizontal bars: capacity of each run, value printed at the bar's end in `unit` ("mm": d x 1000
+// with its unit, milli(path_unit)).
 struct Bar {
   std::string label;
   double value = 0.0;  // m
   std::string color;
 };
-std::string svg_capacity(const std::vector<Bar>& bars);
+std::string svg_capacity(const std::vector<Bar>& bars, const std::string& unit);
 
 }  // namespace masonry
