@@ -128,6 +128,7 @@ int run_tradeoff_command(const TradeoffOpts& o) {
     return 0;
   }
   t.case_name = base.name;
+  t.d_unit = path_unit(base);
   t.command = command_line(o);
   t.plan = plan;
   t.methods = o.methods;
