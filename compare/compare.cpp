@@ -451,7 +451,8 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
   if (k.d_max > 0 || (!ra.empty() && !rb.empty())) {
     std::vector<double> ds;
     for (double f : o.hinge_fractions) ds.push_back(f * k.d_max);
-    k.motion = mechanism_checks(c, a, b, ds);
+    k.motion = mechanism_checks(c, a, b, ds, o.ring_shift);
+    k.ring_shift = o.ring_shift;
   }
   if (!ra.empty() && !rb.empty()) {
     std::set<double> done;
@@ -557,10 +558,12 @@ ojson to_json(const Comparison& k) {
                   {"a_moves", m.a_moves},
                   {"b_moves", m.b_moves},
                   {"agreement", json_number(m.agreement)},
+                  {"agreement_same_joints", json_number(m.same_joints)},
                   {"mirror", m.mirror},
                   {"differ_most", differ}});
   }
   j["mechanism_agreement"] = ma;
+  j["mechanism_joints_apart"] = k.ring_shift;
   j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }
@@ -579,17 +582,26 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
       out.push_back("thrust: largest support reaction difference " + fmt(m, 3) + " W (" + k.thrust_max_where + " at d = " +
                     fmt(k.thrust_max_d) + " m) > limit " + fmt(*t.thrust, 3) + " W");
   }
+  const auto motion_violation = [&](const MotionCheck& m, const std::string& key, double limit) {
+    std::string most;
+    for (const MotionDiff& x : m.differ)
+      most += (most.empty() ? "" : "; ") + x.label + " (" + k.a.label + " " + joint_motion_text(x.a) + ", " + k.b.label + " " +
+              joint_motion_text(x.b) + (m.mirror ? ", mirrored" : "") + ")";
+    out.push_back(key + ": " + interval_text(m, k.d_unit, k.a.label, k.b.label) + " the joints move differently: agreement " +
+                  fmt(m.agreement, 3) + " < least " + fmt(limit, 3) + (most.empty() ? "" : "; most at " + most));
+  };
   if (t.mechanism) {
-    if (k.motion.empty()) out.push_back("mechanism: no common range to compare the runs' motions on");
-    for (const MotionCheck& m : k.motion) {
-      if (!(m.agreement < *t.mechanism)) continue;  // NaN: not determined (a run whose joints do not move)
-      std::string most;
-      for (const MotionDiff& x : m.differ)
-        most += (most.empty() ? "" : "; ") + x.label + " (" + k.a.label + " " + joint_motion_text(x.a) + ", " + k.b.label + " " +
-                joint_motion_text(x.b) + (m.mirror ? ", mirrored" : "") + ")";
-      out.push_back("mechanism: " + interval_text(m, k.d_unit, k.a.label, k.b.label) + " the joints move differently: agreement " +
-                    fmt(m.agreement, 3) + " < least " + fmt(*t.mechanism, 3) + "; most at " + most);
-    }
+    const bool any = std::any_of(k.motion.begin(), k.motion.end(), [](const MotionCheck& m) { return !m.collapse; });
+    if (!any) out.push_back("mechanism: no common range to compare the runs' motions on");
+    for (const MotionCheck& m : k.motion)
+      if (!m.collapse && m.agreement < *t.mechanism) motion_violation(m, "mechanism", *t.mechanism);  // NaN: not determined
+  }
+  if (t.collapse_mechanism) {
+    const auto it = std::find_if(k.motion.begin(), k.motion.end(), [](const MotionCheck& m) { return m.collapse; });
+    if (it == k.motion.end())
+      out.push_back("collapse_mechanism: the runs did not both collapse (or one recorded no collapse state)");
+    else if (it->agreement < *t.collapse_mechanism)
+      motion_violation(*it, "collapse_mechanism", *t.collapse_mechanism);
   }
   if (t.hinges) {
     if (k.hinges.empty()) out.push_back("hinges: no common range to compare hinge locations on");
@@ -629,10 +641,10 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
       if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
         throw std::runtime_error(source + ": \"" + key + "\" must be a non-negative number");
       (key == "capacity" ? t.capacity : t.thrust) = v.get<double>();
-    } else if (key == "mechanism") {
+    } else if (key == "mechanism" || key == "collapse_mechanism") {
       if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1))
-        throw std::runtime_error(source + ": \"mechanism\" must be a number from 0 to 1 (the least mechanism agreement)");
-      t.mechanism = v.get<double>();
+        throw std::runtime_error(source + ": \"" + key + "\" must be a number from 0 to 1 (the least mechanism agreement)");
+      (key == "mechanism" ? t.mechanism : t.collapse_mechanism) = v.get<double>();
     } else if (key == "hinges") {
       if (!v.is_boolean()) throw std::runtime_error(source + ": \"hinges\" must be true or false");
       t.hinges = v.get<bool>();
@@ -643,7 +655,7 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
     } else if (key == "comment" || key == "description") {
       // free text for people
     } else {
-      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, thrust, mechanism, hinges, hinge_shift, comment)");
+      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, thrust, mechanism, collapse_mechanism, hinges, hinge_shift, comment)");
     }
   }
   return t;

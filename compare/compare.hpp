@@ -29,6 +29,11 @@ struct Tolerances {
   // runs' joints must move the same way, by their relative motion weighted by the forces they
   // carry (compare/README.md, "Mechanism agreement").
   std::optional<double> mechanism = std::nullopt;
+  // The least agreement of the mechanisms the runs collapse by (the MotionCheck from each run's
+  // last equilibrium to its collapse state). Apart from `mechanism`: a DEM's collapse state is its
+  // fall when a block has drifted 2% of the scene (on the cathedral 0.9 m), PRD's the
+  // configuration one step past its capacity, neither of them the collapse's first motion.
+  std::optional<double> collapse_mechanism = std::nullopt;
 };
 // The largest hinge_shift looked for (HingeCheck::shift is -1 beyond it).
 inline constexpr int kMaxHingeShift = 3;
@@ -90,7 +95,11 @@ struct MotionCheck {
   bool collapse = false;        // each run from its last equilibrium to its collapse state
   double a_from = 0.0, a_to = 0.0, b_from = 0.0, b_to = 0.0;  // m: d of the records used
   bool a_moves = false, b_moves = false;  // some joint corner moves beyond round-off (1e-9 of the scene)
-  double agreement = std::numeric_limits<double>::quiet_NaN();  // 0 to 1; NaN unless both runs' joints move
+  // 0 to 1; NaN unless both runs' joints move. With CompareOptions::ring_shift n > 0, the better
+  // of the two runs' motions with either's moved along rings by up to n joints to meet the other's
+  // (a hinge one voussoir or course along is the same mechanism, "Hinges one joint apart").
+  double agreement = std::numeric_limits<double>::quiet_NaN();
+  double same_joints = std::numeric_limits<double>::quiet_NaN();  // the agreement with every motion where it is
   bool mirror = false;          // the agreement of b's mirror image (a symmetric scene), higher than the direct one
   std::vector<MotionDiff> differ;  // the joints that differ most, largest share first (up to 3)
 };
@@ -100,8 +109,9 @@ std::optional<StepRecord> collapse_state(const RunResult& r);
 // The mechanism checks of two runs of case c: one per interval between consecutive d of `ds`
 // (from 0), each run read at its last record at or before each end, and, when both collapsed,
 // one from each run's last equilibrium to its collapse state. On a symmetric scene the mirror
-// image of b counts when it agrees better.
-std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, const RunResult& b, const std::vector<double>& ds);
+// image of b counts when it agrees better; along rings, motions `shift` joints apart count as the
+// same joint's (MotionCheck::agreement).
+std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, const RunResult& b, const std::vector<double>& ds, int shift = 0);
 
 // Horizontal (H = Fx / W) and vertical (V = Fy / W) reaction of one support against d, for both
 // runs, on the common d grid.
@@ -138,6 +148,7 @@ struct Comparison {
   double hinge_gap = 0.0;          // m, opening beyond the settled gap a hinge needs (settled_gap)
   std::vector<HingeCheck> hinges;
   std::vector<MotionCheck> motion;  // mechanism agreement per checked interval
+  int ring_shift = 0;               // the CompareOptions::ring_shift it was measured with
   std::string d_unit = "m";         // the path parameter's SI unit (path_unit): "m" or "rad"
   double time_ratio = 0.0;         // time_b / time_a (NaN when time_a is 0)
 };
@@ -155,6 +166,9 @@ enum class ThrustGrid {
 
 struct CompareOptions {
   ThrustGrid thrust_grid = ThrustGrid::every_record;
+  // How many joints along a ring a mechanism's motion may sit from the other run's and count as
+  // the same joint's (Tolerances::hinge_shift; make_report passes the tolerances').
+  int ring_shift = 0;
   // Fractions of the common range at which hinge locations are compared.
   std::vector<double> hinge_fractions{0.1, 0.25, 0.5, 0.75, 1.0};
   // A mechanism state (set of open corners) held for fewer consecutive records than this is

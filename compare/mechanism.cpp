@@ -4,6 +4,7 @@
 #include "compare/compare.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -140,13 +141,74 @@ JointMotion motion_of(const Side& s, const JointFrame& f, size_t k) {
   return m;
 }
 
+// One run's weighted motion: per joint of run a, four numbers in the joint's own frame, corner
+// A's opening and slip, then corner B's, each times the joint's weight (a work scale, N m / W).
+using Motion = std::vector<std::array<double, 4>>;
+
+Motion weighted(const Side& s, const std::vector<JointFrame>& frames, const std::vector<double>& w) {
+  Motion out(frames.size());
+  for (size_t k = 0; k < frames.size(); ++k)
+    out[k] = {w[k] * s.da[k].dot(frames[k].n), w[k] * s.da[k].dot(frames[k].t), w[k] * s.db[k].dot(frames[k].n), w[k] * s.db[k].dot(frames[k].t)};
+  return out;
+}
+
+double dot(const Motion& u, const Motion& v) {
+  double x = 0;
+  for (size_t k = 0; k < u.size(); ++k)
+    for (int q = 0; q < 4; ++q) x += u[k][size_t(q)] * v[k][size_t(q)];
+  return x;
+}
+
+double dot(const std::array<double, 4>& u, const std::array<double, 4>& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2] + u[3] * v[3]; }
+
+// `from`'s motion with each joint's motion moved to the joint within `shift` joints along its
+// ring (ring_neighbours: the same side of the ring) where it best meets `to`'s: a hinge that
+// sits one voussoir or course along from the other run's is the same mechanism (compare/README.md,
+// "Hinges one joint apart"). A moved motion keeps each corner's opening at the corner on the
+// same side, and its slip the same way along the ring: the slip's sign follows the joint's
+// normal (lower- to higher-indexed block, reversed along the ring when the two joints' normals
+// point apart) and the order of the corners.
+Motion relocated(const Case& c, const RunResult& a, const std::vector<JointFrame>& frames, const Motion& from, const Motion& to, int shift) {
+  Motion out(from.size(), {0, 0, 0, 0});
+  for (size_t k = 0; k < from.size(); ++k) {
+    const std::array<double, 4>& v = from[k];
+    if (v == std::array<double, 4>{0, 0, 0, 0}) continue;
+    size_t best = k;
+    std::array<double, 4> moved = v;
+    double gain = dot(to[k], v);
+    for (const RingSpot& sp : ring_neighbours(c, a, int(k), 0, shift)) {
+      if (sp.steps == 0) continue;
+      const size_t j = size_t(sp.joint);
+      const double along = frames[k].n.dot(frames[j].n) < 0 ? -1.0 : 1.0;  // the higher block lies the other way along the ring
+      const double order = sp.corner == 0 ? 1.0 : -1.0;                     // k's A lands on j's B: the tangent turns round
+      const double f = along * order;
+      // Corner A's opening and slip go to the spot's corner, B's to the other.
+      const std::array<double, 4> m = sp.corner == 0 ? std::array<double, 4>{v[0], f * v[1], v[2], f * v[3]}
+                                                     : std::array<double, 4>{v[2], f * v[3], v[0], f * v[1]};
+      const double g = dot(to[j], m);
+      if (g > gain) {
+        gain = g;
+        best = j;
+        moved = m;
+      }
+    }
+    for (int q = 0; q < 4; ++q) out[best][size_t(q)] += moved[size_t(q)];
+  }
+  return out;
+}
+
+double cosine(const Motion& u, const Motion& v) {
+  const double uu = dot(u, u), vv = dot(v, v);
+  return uu > 0 && vv > 0 ? std::clamp(dot(u, v) / std::sqrt(uu * vv), 0.0, 1.0) : std::numeric_limits<double>::quiet_NaN();
+}
+
 // The endpoints of one interval: each run's two records.
 struct Ends {
   const StepRecord *a0 = nullptr, *a1 = nullptr, *b0 = nullptr, *b1 = nullptr;
 };
 
 MotionCheck check_interval(const Case& c, const RunResult& a, const RunResult& b, const Ends& e, const std::vector<int>& mirror, double xc,
-                           double tol) {
+                           double tol, int shift) {
   MotionCheck m;
   m.a_from = e.a0->d;
   m.a_to = e.a1->d;
@@ -167,6 +229,8 @@ MotionCheck check_interval(const Case& c, const RunResult& a, const RunResult& b
   for (int mirrored = 0; mirrored < (mirror.empty() ? 1 : 2); ++mirrored) {
     const std::vector<int>* mp = mirrored ? &mirror : nullptr;
     const Side sb = side_of(c, frames, c0, *e.b0, *e.b1, mp, xc);
+    if (!mirrored) m.b_moves = sb.largest > floor;
+    if (!m.a_moves || !m.b_moves) continue;
     // The weights: each joint's normal force over W, averaged over both runs' records at both
     // ends (b's joints mapped onto a's, through the mirror when b is mirrored).
     const std::vector<int> b_to_a = joint_map(a, b, mp, xc, tol);
@@ -175,26 +239,32 @@ MotionCheck check_interval(const Case& c, const RunResult& a, const RunResult& b
     for (const StepRecord* s : {e.a0, e.a1}) add_forces(*s, ident, W, w, count);
     for (const StepRecord* s : {e.b0, e.b1}) add_forces(*s, b_to_a, W, w, count);
     for (size_t k = 0; k < w.size(); ++k) w[k] = count[k] ? w[k] / count[k] : 0.0;
-    double uu = 0, vv = 0, uv = 0;
-    for (size_t k = 0; k < frames.size(); ++k) {
-      uu += w[k] * w[k] * (sa.da[k].squaredNorm() + sa.db[k].squaredNorm());
-      vv += w[k] * w[k] * (sb.da[k].squaredNorm() + sb.db[k].squaredNorm());
-      uv += w[k] * w[k] * (sa.da[k].dot(sb.da[k]) + sa.db[k].dot(sb.db[k]));
+    const Motion u = weighted(sa, frames, w), v = weighted(sb, frames, w);
+    const double same = cosine(u, v);
+    if (!std::isfinite(same)) continue;  // only unloaded joints move
+    // Along rings, a hinge may sit `shift` joints from the other run's: each run's motion moved
+    // onto the other's, whichever meets it better.
+    Motion uu = u, vv = v;
+    double agreement = same;
+    if (shift > 0) {
+      const Motion v_on_u = relocated(c, a, frames, v, u, shift), u_on_v = relocated(c, a, frames, u, v, shift);
+      const double x = cosine(u, v_on_u), y = cosine(u_on_v, v);
+      if (x > agreement) agreement = x, vv = v_on_u, uu = u;
+      if (y > agreement) agreement = y, uu = u_on_v, vv = v;
     }
-    if (!mirrored) m.b_moves = sb.largest > floor;
-    if (!m.a_moves || !m.b_moves || !(uu > 0) || !(vv > 0)) continue;
-    const double cosine = std::clamp(uv / std::sqrt(uu * vv), 0.0, 1.0);
-    if (cosine <= best) continue;
-    best = cosine;
-    m.agreement = cosine;
+    if (agreement <= best) continue;
+    best = agreement;
+    m.agreement = agreement;
+    m.same_joints = same;
     m.mirror = mirrored;
     // Where the two motions differ: each joint's share of the squared difference of the unit
     // vectors (which sums to 2 - 2 cos).
     std::vector<std::pair<double, size_t>> share;
     double total = 0;
-    const double nu = std::sqrt(uu), nv = std::sqrt(vv);
+    const double nu = std::sqrt(dot(uu, uu)), nv = std::sqrt(dot(vv, vv));
     for (size_t k = 0; k < frames.size(); ++k) {
-      const double e2 = w[k] * w[k] * ((sa.da[k] / nu - sb.da[k] / nv).squaredNorm() + (sa.db[k] / nu - sb.db[k] / nv).squaredNorm());
+      double e2 = 0;
+      for (int q = 0; q < 4; ++q) e2 += std::pow(uu[k][size_t(q)] / nu - vv[k][size_t(q)] / nv, 2);
       total += e2;
       share.push_back({e2, k});
     }
@@ -241,7 +311,7 @@ std::optional<StepRecord> collapse_state(const RunResult& r) {
   return std::nullopt;
 }
 
-std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, const RunResult& b, const std::vector<double>& ds) {
+std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, const RunResult& b, const std::vector<double>& ds, int shift) {
   std::vector<MotionCheck> out;
   const std::vector<const StepRecord*> ra = stable_records(a), rb = stable_records(b);
   if (ra.empty() || rb.empty()) return out;
@@ -252,7 +322,7 @@ std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, con
   double from = 0.0;
   for (double to : ds) {
     if (!(to > from)) continue;
-    MotionCheck m = check_interval(c, a, b, {record_at(ra, from), record_at(ra, to), record_at(rb, from), record_at(rb, to)}, mirror, xc, tol);
+    MotionCheck m = check_interval(c, a, b, {record_at(ra, from), record_at(ra, to), record_at(rb, from), record_at(rb, to)}, mirror, xc, tol, shift);
     m.from = from;
     m.to = to;
     out.push_back(std::move(m));
@@ -261,7 +331,7 @@ std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, con
   // The mechanism each run collapses by, from its last equilibrium to its collapse state.
   const std::optional<StepRecord> ca = collapse_state(a), cb = collapse_state(b);
   if (ca && cb) {
-    MotionCheck m = check_interval(c, a, b, {ra.back(), &*ca, rb.back(), &*cb}, mirror, xc, tol);
+    MotionCheck m = check_interval(c, a, b, {ra.back(), &*ca, rb.back(), &*cb}, mirror, xc, tol, shift);
     m.collapse = true;
     m.from = ra.back()->d;
     m.to = kNaN;

@@ -77,8 +77,10 @@ Report make_report(const Case& c, const std::vector<ReportRun>& runs, const Tole
   r.runs = runs;
   r.tolerances_checked = t != nullptr;
   if (t) r.tolerances = *t;
+  CompareOptions opts = o;
+  if (t) opts.ring_shift = t->hinge_shift;
   for (size_t k = 1; k < runs.size(); ++k) {
-    r.comparisons.push_back(compare_runs(c, *runs[0].run, *runs[k].run, o, runs[0].label, runs[k].label));
+    r.comparisons.push_back(compare_runs(c, *runs[0].run, *runs[k].run, opts, runs[0].label, runs[k].label));
     r.violations.push_back(t ? check_tolerances(r.comparisons.back(), *t) : std::vector<std::string>{});
   }
   return r;
@@ -149,6 +151,7 @@ ojson report_json(const Report& r) {
       lim["capacity"] = r.tolerances.capacity ? json_number(*r.tolerances.capacity) : ojson(nullptr);
       lim["thrust"] = r.tolerances.thrust ? json_number(*r.tolerances.thrust) : ojson(nullptr);
       lim["mechanism"] = r.tolerances.mechanism ? json_number(*r.tolerances.mechanism) : ojson(nullptr);
+      lim["collapse_mechanism"] = r.tolerances.collapse_mechanism ? json_number(*r.tolerances.collapse_mechanism) : ojson(nullptr);
       lim["hinges"] = r.tolerances.hinges;
       lim["hinge_shift"] = r.tolerances.hinge_shift;
       c["tolerances"] = {{"limits", lim}, {"pass", r.violations[k].empty()}, {"violations", r.violations[k]}};
@@ -274,6 +277,7 @@ void tolerance_section(Document& d, const Report& r) {
   d.paragraph({"Limits: capacity " + (r.tolerances.capacity ? fmt::g(*r.tolerances.capacity * 100) + "%" : std::string("not checked")) +
                ", thrust " + (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) +
                ", mechanism agreement " + (r.tolerances.mechanism ? "at least " + fmt::g(*r.tolerances.mechanism) : std::string("not checked")) +
+               (r.tolerances.collapse_mechanism ? ", at collapse at least " + fmt::g(*r.tolerances.collapse_mechanism) : std::string()) +
                ", hinges " +
                (!r.tolerances.hinges            ? std::string("not checked")
                 : r.tolerances.hinge_shift == 0 ? std::string("must match")
@@ -360,9 +364,15 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
                "motions at other joints or in other directions; n/a where one run's joints do not move (blocks carried rigidly by "
                "their supports)." +
                std::string(cmp.symmetric ? " The scene is symmetric: the mirror image of the second run counts when it agrees better." : "") +
-               " Where the agreement is below 1, the joints that differ most (their share of the difference) and what each run does "
-               "there (the second block's turn relative to the first, each corner's opening, the slip). The hinge table below is the "
-               "diagnostic of open corners at the interval ends."});
+               (cmp.ring_shift > 0 ? " A joint's motion may sit up to " + joints_text(cmp.ring_shift) +
+                                         " along a ring from the other run's, as a hinge may (the tolerances' hinge_shift; in brackets "
+                                         "the agreement at the same joints where that is lower)."
+                                   : std::string()) +
+               " The last row compares how the runs collapse, from each one's last equilibrium to its collapse state: the DEM's is its "
+               "fall when a block has drifted 2% of the scene, PRD's the configuration one step past its capacity, so large motions "
+               "past the first one take part. Where the agreement is below 1, the joints that differ most (their share of the "
+               "difference) and what each run does there (the second block's turn relative to the first, each corner's opening, the "
+               "slip). The hinge table below is the diagnostic of open corners at the interval ends."});
   Table t;
   t.head = {"d (" + unit + ")", "agreement", "differs most at"};
   t.align = {Align::right, Align::right, Align::left};
@@ -372,13 +382,15 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
     std::string agree = std::isfinite(m.agreement) ? fmt::number(m.agreement, "%.3f", m.agreement) + (m.mirror ? " (mirror image)" : "")
                         : !m.a_moves && !m.b_moves ? "n/a (no joint moves in either run)"
                                                    : "n/a (no joint moves in " + (!m.a_moves ? cmp.a.label : cmp.b.label) + ")";
+    if (std::isfinite(m.agreement) && m.same_joints < m.agreement - 5e-4) agree += " (" + fmt::number(m.same_joints, "%.3f", m.same_joints) + ")";
     std::string most;
     for (const MotionDiff& x : m.differ) {
       if (x.share < 0.05) continue;  // a minor part of the difference
       most += (most.empty() ? "" : "; ") + x.label + " (" + fmt::number(x.share * 100, "%.0f%%", x.share * 100) + "): " + cmp.a.label + " " +
               joint_motion_text(x.a) + "; " + cmp.b.label + " " + joint_motion_text(x.b);
     }
-    const bool low = r.tolerances_checked && r.tolerances.mechanism && m.agreement < *r.tolerances.mechanism;
+    const std::optional<double>& limit = m.collapse ? r.tolerances.collapse_mechanism : r.tolerances.mechanism;
+    const bool low = r.tolerances_checked && limit && m.agreement < *limit;
     t.rows.push_back({where, low ? Cell(agree, CellStyle::strong) : Cell(agree), std::isfinite(m.agreement) && !most.empty() ? most : "-"});
   }
   d.table(std::move(t));
