@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -211,8 +212,17 @@ double settled_gap(const RunResult& r) {
 std::string milli(const std::string& unit) { return std::string(1, 'm').append(unit); }  // (not "m" +: GCC 12's false -Wrestrict)
 
 std::string joint_motion_text(const JointMotion& m) {
-  return "turns " + fmt(m.rotation * 1e3, 3) + " mrad, opens " + fmt(m.open_a * 1e3, 3) + " mm at A and " + fmt(m.open_b * 1e3, 3) +
-         " mm at B, slides " + fmt(m.slip * 1e3, 3) + " mm";
+  // mm and mrad without an exponent; below a micrometre (a microradian) is 0, round-off of the
+  // coordinates or elastic noise.
+  const auto v = [](double x) {
+    const double y = x * 1e3;
+    if (!std::isfinite(y)) return std::string("n/a");
+    if (std::abs(y) < 5e-4) return std::string("0");
+    char b[32];
+    std::snprintf(b, sizeof b, std::abs(y) >= 100 ? "%.0f" : "%.3g", y);
+    return std::string(b);
+  };
+  return "turns " + v(m.rotation) + " mrad, opens " + v(m.open_a) + " mm at A and " + v(m.open_b) + " mm at B, slides " + v(m.slip) + " mm";
 }
 
 std::string interval_text(const MotionCheck& m, const std::string& d_unit, const std::string& label_a, const std::string& label_b) {

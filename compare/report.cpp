@@ -330,7 +330,7 @@ std::string slider_html(const Report& r, int frames) {
     id += std::to_string(i);
     id += '-';
     o << "<div class=\"frame\" data-d=\"" << dd << "\" data-index=\"" << i << "\"" << (i ? " hidden" : "") << ">\n"
-      << svg_structure(c, panels, frame, pw, id) << "</div>\n";
+      << svg_structure(c, panels, frame, pw, id, false) << "</div>\n";
   }
   return o.str();
 }
@@ -391,7 +391,9 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
     }
     const std::optional<double>& limit = m.collapse ? r.tolerances.collapse_mechanism : r.tolerances.mechanism;
     const bool low = r.tolerances_checked && limit && m.agreement < *limit;
-    t.rows.push_back({where, low ? Cell(agree, CellStyle::strong) : Cell(agree), std::isfinite(m.agreement) && !most.empty() ? most : "-"});
+    // What differs is listed where the agreement reads below 1.000.
+    const bool differs = std::isfinite(m.agreement) && m.agreement < 0.9995 && !most.empty();
+    t.rows.push_back({where, low ? Cell(agree, CellStyle::strong) : Cell(agree), differs ? Cell(most) : Cell("-")});
   }
   d.table(std::move(t));
 }

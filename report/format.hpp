@@ -40,9 +40,11 @@ inline std::string secs(double s) {
   return number(s, "%.2g", s);
 }
 
-// A duration as a reader says it: "3.8 ms" below a second, "12.5 s" above.
+// A duration as a reader says it: "0.96 ms", "3.8 ms", "790 ms" below a second, "12.5 s" above.
 inline std::string duration(double s) {
-  if (std::abs(s) < 1) return number(s, "%.2g ms", s * 1000);
+  const double ms = s * 1000;
+  if (!std::isfinite(s)) return "n/a";
+  if (std::abs(s) < 1) return number(ms, std::abs(ms) >= 100 ? "%.0f ms" : "%.2g ms", ms);
   return secs(s) + " s";
 }
 

@@ -51,6 +51,11 @@ TEST(ReportFormat, NoNanAndNoExponent) {
   EXPECT_EQ(fmt::secs(2222.4), "2222");
   EXPECT_EQ(fmt::px(INFINITY), "0.0");  // a coordinate never breaks the drawing
   EXPECT_EQ(fmt::kn(19350), "19.4");
+  EXPECT_EQ(fmt::duration(0.0038), "3.8 ms");
+  EXPECT_EQ(fmt::duration(0.00096), "0.96 ms");
+  EXPECT_EQ(fmt::duration(0.79), "790 ms");
+  EXPECT_EQ(fmt::duration(21.2), "21.2 s");
+  EXPECT_EQ(fmt::duration(NAN), "n/a");
 }
 
 TEST(ReportTable, NumbersRightTextLeftInBothRenderings) {
