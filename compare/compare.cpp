@@ -212,7 +212,7 @@ double settled_gap(const RunResult& r) {
 std::string milli(const std::string& unit) { return std::string(1, 'm').append(unit); }  // (not "m" +: GCC 12's false -Wrestrict)
 
 std::string joint_motion_text(const JointMotion& m) {
-  // mm and mrad without an exponent; below a micrometre (a microradian) is 0, round-off of the
+  // mm and mrad without an exponent; below half a micrometre (microradian) is 0: round-off of the
   // coordinates or elastic noise.
   const auto v = [](double x) {
     const double y = x * 1e3;
@@ -458,7 +458,7 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
   const double tol = 1e-6 * std::max(1.0, scene_size(c));
   k.hinge_gap = std::max(settled_gap(a), settled_gap(b));
   k.d_unit = path_unit(c);
-  if (k.d_max > 0 || (!ra.empty() && !rb.empty())) {
+  if (!ra.empty() && !rb.empty()) {
     std::vector<double> ds;
     for (double f : o.hinge_fractions) ds.push_back(f * k.d_max);
     k.motion = mechanism_checks(c, a, b, ds, o.ring_shift);

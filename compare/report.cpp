@@ -176,13 +176,18 @@ const Figure* find_figure(const std::vector<Figure>& figures, const std::string&
   return nullptr;
 }
 
-// The least agreement of a comparison's mechanism checks, and at which interval ("0.998", or
-// "n/a" when no interval has both runs' joints moving).
+// The least mechanism agreement over the intervals of the common range, then the agreement at
+// collapse: "0.992 (at collapse 0.651)"; "n/a" where no interval has both runs' joints moving.
 std::string least_agreement_text(const Comparison& k) {
   const MotionCheck* least = nullptr;
-  for (const MotionCheck& m : k.motion)
-    if (std::isfinite(m.agreement) && (!least || m.agreement < least->agreement)) least = &m;
-  return least ? fmt::number(least->agreement, "%.3f", least->agreement) : "n/a";
+  const MotionCheck* collapse = nullptr;
+  for (const MotionCheck& m : k.motion) {
+    if (m.collapse) collapse = &m;
+    else if (std::isfinite(m.agreement) && (!least || m.agreement < least->agreement)) least = &m;
+  }
+  std::string s = least ? fmt::number(least->agreement, "%.3f", least->agreement) : "n/a";
+  if (collapse && std::isfinite(collapse->agreement)) s += " (at collapse " + fmt::number(collapse->agreement, "%.3f", collapse->agreement) + ")";
+  return s;
 }
 
 // The headline: one column per run, the reference first.
@@ -232,11 +237,11 @@ Table headline(const Report& r) {
 
 }  // namespace
 
-Text prd_on_run_explained(double tolerance) {
+Text prd_on_run_explained(double tolerance, const std::string& unit) {
   return {"PRD started from the DEM's last equilibrium at or before 0.9 of its capacity (",
           Cell("masonry prd --from", CellStyle::code),
-          "), every block where the DEM left it, its events located to " + fmt::mm(tolerance, 2) +
-              " mm (the DEM's collapse bracket). Offsets kept: each touching joint corner's elastic overlap and shear become the "
+          "), every block where the DEM left it, its events located to " + fmt::mm(tolerance, 2) + " " + unit +
+              " (the DEM's collapse bracket). Offsets kept: each touching joint corner's elastic overlap and shear become the "
               "joint's geometry, the blocks rigid from there as the joints had deformed them; taken back: PRD's first step undoes "
               "them, the blocks rigid as cut. Where the kept column meets the DEM's capacity and the taken-back one PRD's from the "
               "case, the two methods agree on the deformed structure and their difference is the geometry the DEM's elastic joints "
@@ -266,7 +271,7 @@ void deformed_section(Document& d, const Report& r) {
   }
   if (t.rows.empty()) return;
   Text intro{Cell("PRD on the DEM's deformed configuration", CellStyle::strong), ": "};
-  for (Cell& x : prd_on_run_explained(tolerance)) intro.push_back(std::move(x));
+  for (Cell& x : prd_on_run_explained(tolerance, unit)) intro.push_back(std::move(x));
   d.paragraph(std::move(intro));
   d.table(std::move(t));
 }

@@ -10,7 +10,7 @@ namespace masonry {
 // for in its own error).
 std::optional<std::string> read_text(const std::string& path);
 // The text of `path`, or, where only `path`.xz is there (or `path` itself ends in .xz), that file
-// decompressed: the runs kept under reports/ are xz-compressed results.json (a tenth of the size).
+// decompressed: the runs kept under reports/ are xz-compressed results.json (a sixth of the size).
 // Nothing when neither can be opened; throws std::runtime_error naming the file when it is not
 // valid xz.
 std::optional<std::string> read_text_or_xz(const std::string& path);
