@@ -392,6 +392,27 @@ TEST(TradeoffCommand, WritesEveryFileWithoutNaN) {
   EXPECT_EQ(reused, 5u) << log;
 }
 
+// A finished run kept compressed (results.json.xz, as the runs under reports/ are) serves as a
+// method's reference.
+TEST(TradeoffCommand, ACompressedRunServesAsTheReference) {
+  if (run("command -v xz >/dev/null 2>&1") != 0) GTEST_SKIP() << "xz is not installed (scripts/install-deps.sh installs it)";
+  const test::Scratch scratch("tradeoff-xz");
+  const fs::path d = scratch.path;
+  write(d / "tilt.json", kTiltCase);
+  write(d / "plan.json", kTiltPlan);
+  const std::string ref = (d / "ref").string();
+  ASSERT_EQ(run(std::string(MASONRY_EXE) + " prd " + (d / "tilt.json").string() + " --out " + ref + " 2>/dev/null"), 0);
+  ASSERT_EQ(run("xz -1 " + ref + "/results.json"), 0);
+  const std::string out = (d / "out").string();
+  ASSERT_EQ(run(std::string(MASONRY_EXE) + " tradeoff " + (d / "tilt.json").string() + " --out " + out + " --methods prd --plan " +
+                (d / "plan.json").string() + " --repeat 1 --reference-prd " + ref + " --quiet 2>/dev/null"),
+            0);
+  const auto j = nlohmann::json::parse(read(fs::path(out) / "tradeoff.json"));
+  EXPECT_EQ(j["rows"][0]["role"], "reference");
+  EXPECT_EQ(j["rows"][0]["source"], ref);
+  EXPECT_NEAR(j["rows"][0]["capacity"].get<double>(), grid_capacity(0.004), 1e-9);
+}
+
 TEST(TradeoffCommand, BadOptionsGetOneLine) {
   const test::Scratch scratch("tradeoff-bad");
   const fs::path d = scratch.path;
