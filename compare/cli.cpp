@@ -155,10 +155,12 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
   for (size_t k = 0; k < rep.comparisons.size(); ++k) {
     const Comparison& cmp = rep.comparisons[k];
     // fmt: "n/a", never "nan", for what a run's results do not give (an outside solver's timing).
+    const char* unit = cmp.d_unit.c_str();
     if (!o.quiet)
-      std::fprintf(stderr, "compare: %s: %s %.4g m, %s %.4g m (%s), thrust difference max %s W rms %s W, times %s s / %s s\n",
-                   c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, cmp.b.label.c_str(), cmp.b.capacity, fmt::pct(cmp.capacity_rel_diff).c_str(),
-                   fmt::g(cmp.thrust_max_diff).c_str(), fmt::g(cmp.thrust_rms_diff).c_str(), fmt::g(cmp.a.time_s).c_str(), fmt::g(cmp.b.time_s).c_str());
+      std::fprintf(stderr, "compare: %s: %s %.4g %s, %s %.4g %s (%s), thrust difference max %s W rms %s W, times %s s / %s s\n",
+                   c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, unit, cmp.b.label.c_str(), cmp.b.capacity, unit,
+                   fmt::pct(cmp.capacity_rel_diff).c_str(), fmt::g(cmp.thrust_max_diff).c_str(), fmt::g(cmp.thrust_rms_diff).c_str(),
+                   fmt::g(cmp.a.time_s).c_str(), fmt::g(cmp.b.time_s).c_str());
     for (const std::string& v : rep.violations[k]) std::cerr << "compare: limit exceeded: " << v << "\n";
     failed = failed || !rep.violations[k].empty();
   }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -218,6 +219,29 @@ double settled_gap(const RunResult& r) {
   return g;
 }
 
+std::string milli(const std::string& unit) { return std::string(1, 'm').append(unit); }  // (not "m" +: GCC 12's false -Wrestrict)
+
+std::string joint_motion_text(const JointMotion& m) {
+  // mm and mrad without an exponent; below half a micrometre (microradian) is 0: round-off of the
+  // coordinates or elastic noise.
+  const auto v = [](double x) {
+    const double y = x * 1e3;
+    if (!std::isfinite(y)) return std::string("n/a");
+    if (std::abs(y) < 5e-4) return std::string("0");
+    char b[32];
+    std::snprintf(b, sizeof b, std::abs(y) >= 100 ? "%.0f" : "%.3g", y);
+    return std::string(b);
+  };
+  return "turns " + v(m.rotation) + " mrad, opens " + v(m.open_a) + " mm at A and " + v(m.open_b) + " mm at B, slides " + v(m.slip) + " mm";
+}
+
+std::string interval_text(const MotionCheck& m, const std::string& d_unit, const std::string& label_a, const std::string& label_b) {
+  const auto d = [&](double x) { return fmt(x * 1e3, 4); };
+  if (m.collapse)
+    return "at collapse (" + label_a + " from d = " + d(m.a_from) + ", " + label_b + " from d = " + d(m.b_from) + " " + milli(d_unit) + ")";
+  return "from d = " + d(m.from) + " to " + d(m.to) + " " + milli(d_unit);
+}
+
 std::string joints_text(int n) { return std::to_string(n) + (n == 1 ? " joint" : " joints"); }
 
 std::vector<RingSpot> ring_neighbours(const Case& c, const RunResult& r, int joint, int corner, int shift) {
@@ -370,11 +394,16 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
   k.d_max = std::max(k.d_max, 0.0);
 
   // Common grid: every record of either run inside [0, d_max], so neither run's jumps are
-  // smoothed away by a coarser grid; points closer than a billionth of the range are one.
+  // smoothed away by a coarser grid (or the coarser run's records alone, ThrustGrid); points
+  // closer than a billionth of the range are one.
   std::vector<double> grid;
-  for (const auto* recs : {&ra, &rb})
+  const auto in_range = [&](const StepRecord* s) { return s->d >= 0 && s->d <= k.d_max * (1 + 1e-12) + 1e-15; };
+  const auto count = [&](const std::vector<const StepRecord*>& recs) { return std::count_if(recs.begin(), recs.end(), in_range); };
+  std::vector<const std::vector<const StepRecord*>*> sources{&ra, &rb};
+  if (o.thrust_grid == ThrustGrid::coarser_run) sources = {count(rb) < count(ra) ? &rb : &ra};
+  for (const auto* recs : sources)
     for (const StepRecord* s : *recs)
-      if (s->d >= 0 && s->d <= k.d_max * (1 + 1e-12) + 1e-15) grid.push_back(std::min(s->d, k.d_max));
+      if (in_range(s)) grid.push_back(std::min(s->d, k.d_max));
   std::sort(grid.begin(), grid.end());
   const double merge = 1e-9 * std::max(k.d_max, 1e-9);
   for (double x : grid)
@@ -388,6 +417,13 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
     return false;
   });
   k.hinges_skipped = missing(a, b, k, "joints", [](const RunResult& r) { return !r.joints.empty(); });
+  // The mechanism agreement moves the joints' corners with the blocks' poses.
+  k.mechanism_skipped = missing(a, b, k, "poses", [&](const RunResult& r) {
+    if (r.joints.empty()) return false;
+    for (const StepRecord* s : stable_records(r))
+      if (s->poses.size() != c.blocks.size()) return false;
+    return true;
+  });
   std::vector<std::string> supports;
   if (!ra.empty() && k.thrust_skipped.empty())
     for (const Reaction& x : ra.front()->reactions) supports.push_back(x.support);
@@ -444,6 +480,13 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
   const double xc = 0.5 * (lo.x() + hi.x());
   const double tol = 1e-6 * std::max(1.0, scene_size(c));
   k.hinge_gap = std::max(settled_gap(a), settled_gap(b));
+  k.d_unit = path_unit(c);
+  if (!ra.empty() && !rb.empty() && k.mechanism_skipped.empty()) {
+    std::vector<double> ds;
+    for (double f : o.hinge_fractions) ds.push_back(f * k.d_max);
+    k.motion = mechanism_checks(c, a, b, ds, o.ring_shift);
+    k.ring_shift = o.ring_shift;
+  }
   if (!ra.empty() && !rb.empty() && k.hinges_skipped.empty()) {
     std::set<double> done;
     for (double f : o.hinge_fractions) {
@@ -474,6 +517,7 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
 ojson to_json(const Comparison& k) {
   ojson j;
   j["case"] = k.case_name;
+  j["d_unit"] = k.d_unit;
   j["a"] = summary_json(k.a);
   j["b"] = summary_json(k.b);
   j["total_weight"] = json_number(k.total_weight);
@@ -534,6 +578,31 @@ ojson to_json(const Comparison& k) {
   j["hinges"] = {{"compared", k.hinges_skipped.empty()}};
   if (!k.hinges_skipped.empty()) j["hinges"]["note"] = k.hinges_skipped;
   j["hinges"].update(ojson{{"symmetric", k.symmetric}, {"min_opening", json_number(k.hinge_gap)}, {"max_joints_apart", kMaxHingeShift}, {"checks", hc}});
+  ojson ma = ojson::array();
+  const auto motion_json = [](const JointMotion& m) {
+    return ojson{{"rotation", json_number(m.rotation)}, {"open_a", json_number(m.open_a)}, {"open_b", json_number(m.open_b)}, {"slip", json_number(m.slip)}};
+  };
+  for (const MotionCheck& m : k.motion) {
+    ojson differ = ojson::array();
+    for (const MotionDiff& x : m.differ)
+      differ.push_back({{"joint", x.label}, {"share", json_number(x.share)}, {"weight", json_number(x.weight)}, {"a", motion_json(x.a)}, {"b", motion_json(x.b)}});
+    ma.push_back({{"from", json_number(m.from)},
+                  {"to", m.collapse ? ojson(nullptr) : json_number(m.to)},
+                  {"collapse", m.collapse},
+                  {"a_from", json_number(m.a_from)},
+                  {"a_to", json_number(m.a_to)},
+                  {"b_from", json_number(m.b_from)},
+                  {"b_to", json_number(m.b_to)},
+                  {"a_moves", m.a_moves},
+                  {"b_moves", m.b_moves},
+                  {"agreement", json_number(m.agreement)},
+                  {"agreement_same_joints", json_number(m.same_joints)},
+                  {"mirror", m.mirror},
+                  {"differ_most", differ}});
+  }
+  j["mechanism_agreement"] = ma;
+  if (!k.mechanism_skipped.empty()) j["mechanism_note"] = k.mechanism_skipped;
+  j["mechanism_joints_apart"] = k.ring_shift;
   j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }
@@ -555,6 +624,27 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
     if (!std::isfinite(m) || m > *t.thrust)
       out.push_back("thrust: largest support reaction difference " + fmt(m, 3) + " W (" + k.thrust_max_where + " at d = " +
                     fmt(k.thrust_max_d) + " m) > limit " + fmt(*t.thrust, 3) + " W");
+  }
+  const auto motion_violation = [&](const MotionCheck& m, const std::string& key, double limit) {
+    std::string most;
+    for (const MotionDiff& x : m.differ)
+      most += (most.empty() ? "" : "; ") + x.label + " (" + k.a.label + " " + joint_motion_text(x.a) + ", " + k.b.label + " " +
+              joint_motion_text(x.b) + (m.mirror ? ", mirrored" : "") + ")";
+    out.push_back(key + ": " + interval_text(m, k.d_unit, k.a.label, k.b.label) + " the joints move differently: agreement " +
+                  fmt(m.agreement, 3) + " < least " + fmt(limit, 3) + (most.empty() ? "" : "; most at " + most));
+  };
+  if (t.mechanism && k.mechanism_skipped.empty()) {
+    const bool any = std::any_of(k.motion.begin(), k.motion.end(), [](const MotionCheck& m) { return !m.collapse; });
+    if (!any) out.push_back("mechanism: no common range to compare the runs' motions on");
+    for (const MotionCheck& m : k.motion)
+      if (!m.collapse && m.agreement < *t.mechanism) motion_violation(m, "mechanism", *t.mechanism);  // NaN: not determined
+  }
+  if (t.collapse_mechanism && k.mechanism_skipped.empty()) {
+    const auto it = std::find_if(k.motion.begin(), k.motion.end(), [](const MotionCheck& m) { return m.collapse; });
+    if (it == k.motion.end())
+      out.push_back("collapse_mechanism: the runs did not both collapse (or one recorded no collapse state)");
+    else if (it->agreement < *t.collapse_mechanism)
+      motion_violation(*it, "collapse_mechanism", *t.collapse_mechanism);
   }
   if (t.hinges && k.hinges_skipped.empty()) {
     if (k.hinges.empty()) out.push_back("hinges: no common range to compare hinge locations on");
@@ -594,6 +684,10 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
       if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
         throw std::runtime_error(source + ": \"" + key + "\" must be a non-negative number");
       (key == "capacity" ? t.capacity : key == "capacity_abs" ? t.capacity_abs : t.thrust) = v.get<double>();
+    } else if (key == "mechanism" || key == "collapse_mechanism") {
+      if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() <= 1))
+        throw std::runtime_error(source + ": \"" + key + "\" must be a number from 0 to 1 (the least mechanism agreement)");
+      (key == "mechanism" ? t.mechanism : t.collapse_mechanism) = v.get<double>();
     } else if (key == "hinges") {
       if (!v.is_boolean()) throw std::runtime_error(source + ": \"hinges\" must be true or false");
       t.hinges = v.get<bool>();
@@ -604,7 +698,8 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
     } else if (key == "comment" || key == "description") {
       // free text for people
     } else {
-      throw std::runtime_error(source + ": unknown key \"" + key + "\" (known: capacity, capacity_abs, thrust, hinges, hinge_shift, comment)");
+      throw std::runtime_error(source + ": unknown key \"" + key +
+                               "\" (known: capacity, capacity_abs, thrust, mechanism, collapse_mechanism, hinges, hinge_shift, comment)");
     }
   }
   return t;

@@ -4,6 +4,7 @@
 // calls a solver, and solvers never call it.
 #pragma once
 
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -28,6 +29,15 @@ struct Tolerances {
   // the two limits (as a catalogue's tolerance): an absolute limit judges a reference capacity
   // near 0, or one step of an incremental run.
   std::optional<double> capacity_abs = std::nullopt;
+  // The least mechanism agreement (0 to 1) over the checked intervals of d (MotionCheck): the two
+  // runs' joints must move the same way, by their relative motion weighted by the forces they
+  // carry (compare/README.md, "Mechanism agreement").
+  std::optional<double> mechanism = std::nullopt;
+  // The least agreement of the mechanisms the runs collapse by (the MotionCheck from each run's
+  // last equilibrium to its collapse state). Apart from `mechanism`: a DEM's collapse state is its
+  // fall when a block has drifted 2% of the scene (on the cathedral 0.9 m), PRD's the
+  // configuration one step past its capacity, neither of them the collapse's first motion.
+  std::optional<double> collapse_mechanism = std::nullopt;
 };
 // The largest hinge_shift looked for (HingeCheck::shift is -1 beyond it).
 inline constexpr int kMaxHingeShift = 3;
@@ -61,6 +71,52 @@ struct HingeCheck {
   bool ok(int allowed_shift = 0) const { return shift >= 0 && shift <= allowed_shift; }
 };
 
+// How one joint moved over an interval in one run: the relative rotation of its two blocks, how
+// far each corner opened (negative: closed), and the slip along the joint.
+struct JointMotion {
+  double rotation = 0.0;              // rad: the higher-indexed block's turn relative to the other's
+  double open_a = 0.0, open_b = 0.0;  // m: corner A's and B's separation along the joint's normal
+  double slip = 0.0;                  // m: the corners' mean relative displacement along the joint
+};
+// A joint where two runs' motions differ, with what each run does there.
+struct MotionDiff {
+  int joint = -1;       // index into run a's joints
+  std::string label;    // "blockA/blockB" (case text: escape before display)
+  double share = 0.0;   // its part of the squared difference of the two unit motions (0 to 1)
+  double weight = 0.0;  // the normal force it carries, over W (both runs, both ends, averaged)
+  JointMotion a, b;     // b mirrored when the agreement is the mirror image's
+};
+// Whether two runs move the same way over one checked interval of d. Each run's motion is the
+// vector of every joint corner's relative displacement increment (the two blocks' copies of the
+// corner, in the lower-indexed block's frame, so the rigid motion the supports impose on a pair
+// counts for nothing), each joint's entries weighted by the normal force it carries over W
+// (averaged over both runs at both ends): a work scale, so a joint that carries the structure
+// counts and an unloaded one hardly. The agreement is the cosine of the two vectors, 0 below 0:
+// 1 for the same mechanism at any amplitude, 0 for motions at other joints or in other
+// directions (compare/README.md, "Mechanism agreement").
+struct MotionCheck {
+  double from = 0.0, to = 0.0;  // m: the interval of the common range; `to` NaN for the collapse
+  bool collapse = false;        // each run from its last equilibrium to its collapse state
+  double a_from = 0.0, a_to = 0.0, b_from = 0.0, b_to = 0.0;  // m: d of the records used
+  bool a_moves = false, b_moves = false;  // some joint corner moves beyond round-off (1e-9 of the scene)
+  // 0 to 1; NaN unless both runs' joints move. With CompareOptions::ring_shift n > 0, the better
+  // of the two runs' motions with either's moved along rings by up to n joints to meet the other's
+  // (a hinge one voussoir or course along is the same mechanism, "Hinges one joint apart").
+  double agreement = std::numeric_limits<double>::quiet_NaN();
+  double same_joints = std::numeric_limits<double>::quiet_NaN();  // the agreement with every motion where it is
+  bool mirror = false;          // the agreement of b's mirror image (a symmetric scene), higher than the direct one
+  std::vector<MotionDiff> differ;  // the joints that differ most, largest share first (up to 3)
+};
+// A run's collapse state: the DEM's failed hold past its capacity, PRD's configuration one step
+// past it (where its last mechanism took the blocks); nothing for a run that did not collapse.
+std::optional<StepRecord> collapse_state(const RunResult& r);
+// The mechanism checks of two runs of case c: one per interval between consecutive d of `ds`
+// (from 0), each run read at its last record at or before each end, and, when both collapsed,
+// one from each run's last equilibrium to its collapse state. On a symmetric scene the mirror
+// image of b counts when it agrees better; along rings, motions `shift` joints apart count as the
+// same joint's (MotionCheck::agreement).
+std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, const RunResult& b, const std::vector<double>& ds, int shift = 0);
+
 // Horizontal (H = Fx / W) and vertical (V = Fy / W) reaction of one support against d, for both
 // runs, on the common d grid.
 struct SupportCurve {
@@ -86,7 +142,7 @@ struct Comparison {
   RunSummary a, b;
   double capacity_rel_diff = 0.0;  // (cap_b - cap_a) / cap_a; NaN if cap_a == 0 and cap_b != 0
   double d_max = 0.0;              // common range [0, d_max], d_max = min of the capacities
-  std::vector<double> d;           // common grid: the union of both runs' record d in the range
+  std::vector<double> d;           // the d the thrust curves are compared at (CompareOptions::thrust_grid)
   std::vector<SupportCurve> supports;
   double thrust_max_diff = 0.0;    // largest over supports and components, / W
   double thrust_max_d = 0.0;       // m, where it occurs
@@ -95,14 +151,32 @@ struct Comparison {
   bool symmetric = false;          // the block geometry is its own mirror image about x = xc
   double hinge_gap = 0.0;          // m, opening beyond the settled gap a hinge needs (settled_gap)
   std::vector<HingeCheck> hinges;
+  std::vector<MotionCheck> motion;  // mechanism agreement per checked interval
+  int ring_shift = 0;               // the CompareOptions::ring_shift it was measured with
+  std::string d_unit = "m";         // the path parameter's SI unit (path_unit): "m" or "rad"
   double time_ratio = 0.0;         // time_b / time_a (NaN when time_a is 0)
   // What a run's results do not give is not compared (a results file need give only its
   // capacity and steps): the reason, or empty when compared. Thrust curves need every run's
   // reactions, hinges its joints and open corners.
-  std::string thrust_skipped, hinges_skipped;
+  std::string thrust_skipped, hinges_skipped, mechanism_skipped;
+};
+
+// Where two runs' thrust curves are compared.
+enum class ThrustGrid {
+  every_record,  // every record of either run, each run interpolated between its own (the comparison's)
+  // Only at the records of the run with fewer records in the common range, the other run
+  // interpolated there: neither is read between two of its records across a jump it did not
+  // resolve (the trade-off's, whose settings step differently: a DEM arch's settled thrust falls
+  // to the minimum thrust over the first step, so a run read half way through that step against
+  // one recorded there differs by the jump, not by accuracy).
+  coarser_run,
 };
 
 struct CompareOptions {
+  ThrustGrid thrust_grid = ThrustGrid::every_record;
+  // How many joints along a ring a mechanism's motion may sit from the other run's and count as
+  // the same joint's (Tolerances::hinge_shift; make_report passes the tolerances').
+  int ring_shift = 0;
   // Fractions of the common range at which hinge locations are compared.
   std::vector<double> hinge_fractions{0.1, 0.25, 0.5, 0.75, 1.0};
   // A mechanism state (set of open corners) held for fewer consecutive records than this is
@@ -141,6 +215,12 @@ struct RingSpot {
 // joining the two joints' midpoints). Blocks where rings branch (a pier carrying a flyer) and
 // supports are not crossed.
 std::vector<RingSpot> ring_neighbours(const Case& c, const RunResult& r, int joint, int corner, int shift);
+// The unit reports show d in: "mm" for "m", "mrad" for "rad" (d x 1000 either way).
+std::string milli(const std::string& unit);
+// "turns 12.1 mrad, opens 36.1 mm at A and 0.02 mm at B, slides 0.1 mm".
+std::string joint_motion_text(const JointMotion& m);
+// "from d = 93 to 232 mm", or "at collapse (PRD from d = 930, DEM from d = 913.7 mm)".
+std::string interval_text(const MotionCheck& m, const std::string& d_unit, const std::string& label_a, const std::string& label_b);
 // "1 joint", "2 joints": a shift along a ring as messages and reports write it.
 std::string joints_text(int n);
 // Hinges of one record (joint with exactly one open corner), sorted by joint. With min_opening >

@@ -226,7 +226,9 @@ std::string convergence_markdown(const Convergence& c) {
                  "same joints and, in brackets, the same joints or a neighbour along the ring (\"Hinges one joint apart\")."});
   const auto has = [](const ConvergenceEntry& e) { return e.prd_on_run.has_value(); };
   if (const auto first = std::find_if(c.entries.begin(), c.entries.end(), has); first != c.entries.end()) {
-    d.paragraph({Cell("PRD on each run's deformed configuration", CellStyle::strong), ": " + prd_on_run_explained(first->prd_on_run->tolerance)});
+    Text intro{Cell("PRD on each run's deformed configuration", CellStyle::strong), ": "};
+    for (Cell& x : prd_on_run_explained(first->prd_on_run->tolerance, c.scene ? milli(path_unit(*c.scene)) : "mm")) intro.push_back(std::move(x));
+    d.paragraph(std::move(intro));
     Table g;
     g.head = {"run", "from d (m)", "capacity (m)", "PRD, offsets kept (m)", "against the run", "PRD, taken back (m)", "against the run"};
     g.align = {Align::left, Align::right, Align::right, Align::right, Align::right, Align::right, Align::right};

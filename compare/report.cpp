@@ -26,11 +26,14 @@ std::string ratio(double x) { return fmt::number(x, x >= 100 ? "%.0f" : "%.3g", 
 
 const StepRecord* record_at(const RunResult& r, double d) { return record_at(stable_records(r), d); }
 
-Panel panel(const ReportRun& rr, const StepRecord* s, double d) {
+// The unit d is shown in: mm, or mrad when the supports only turn (path_unit).
+std::string d_unit(const Report& r) { return milli(path_unit(*r.c)); }
+
+Panel panel(const ReportRun& rr, const StepRecord* s, double d, const std::string& unit) {
   Panel p{rr.run, s, rr.label, "no record"};
   if (!s) return p;
-  p.subtitle = "d = " + mm(s->d, 0) + " mm";
-  if (d > rr.run->capacity + 1e-9 && rr.run->collapsed) p.subtitle += " (collapsed after " + mm(rr.run->capacity) + " mm)";
+  p.subtitle = "d = " + mm(s->d, 0) + " " + unit;
+  if (d > rr.run->capacity + 1e-9 && rr.run->collapsed) p.subtitle += " (collapsed after " + mm(rr.run->capacity) + " " + unit + ")";
   return p;
 }
 
@@ -46,7 +49,7 @@ std::string hinge_list(const std::vector<Hinge>& hs) {
   return o.empty() ? "none" : o;
 }
 
-std::string changes_mm(const RunSummary& s) {
+std::string changes_text(const RunSummary& s) {
   std::string o;
   for (double d : s.changes) o += (o.empty() ? "" : ", ") + mm(d);
   return o.empty() ? "none" : o;
@@ -75,8 +78,10 @@ Report make_report(const Case& c, const std::vector<ReportRun>& runs, const Tole
   r.runs = runs;
   r.tolerances_checked = t != nullptr;
   if (t) r.tolerances = *t;
+  CompareOptions opts = o;
+  if (t) opts.ring_shift = t->hinge_shift;
   for (size_t k = 1; k < runs.size(); ++k) {
-    r.comparisons.push_back(compare_runs(c, *runs[0].run, *runs[k].run, o, runs[0].label, runs[k].label));
+    r.comparisons.push_back(compare_runs(c, *runs[0].run, *runs[k].run, opts, runs[0].label, runs[k].label));
     r.violations.push_back(t ? check_tolerances(r.comparisons.back(), *t) : std::vector<std::string>{});
   }
   return r;
@@ -84,9 +89,10 @@ Report make_report(const Case& c, const std::vector<ReportRun>& runs, const Tole
 
 std::vector<Figure> report_figures(const Report& r) {
   std::vector<Figure> figs;
+  const std::string unit = d_unit(r);
   std::vector<Bar> bars;
   for (size_t k = 0; k < r.runs.size(); ++k) bars.push_back({r.runs[k].label, r.runs[k].run->capacity, kRunColors[k % 6]});
-  figs.push_back({"figures/capacity.svg", svg_capacity(bars), "Displacement capacity of each run"});
+  figs.push_back({"figures/capacity.svg", svg_capacity(bars, unit), "Displacement capacity of each run"});
   std::vector<const RunResult*> all;
   for (const ReportRun& rr : r.runs) all.push_back(rr.run);
   const DrawFrame frame = draw_frame(*r.c, all);
@@ -103,15 +109,15 @@ std::vector<Figure> report_figures(const Report& r) {
       const StepRecord* sa = record_at(*A.run, d);
       const StepRecord* sb = record_at(*B.run, d);
       figs.push_back({"figures/structure-" + n + "-" + std::to_string(++j) + ".svg",
-                      svg_structure(*r.c, {panel(A, sa, d), panel(B, sb, d)}, frame),
-                      "d = " + mm(d) + " mm"});
+                      svg_structure(*r.c, {panel(A, sa, d, unit), panel(B, sb, d, unit)}, frame),
+                      "d = " + mm(d) + " " + unit});
     }
     if (std::abs(cmp.a.capacity - cmp.b.capacity) > 1e-12) {
       const StepRecord* sa = record_at(*A.run, cmp.a.capacity);
       const StepRecord* sb = record_at(*B.run, cmp.b.capacity);
       figs.push_back({"figures/structure-" + n + "-" + std::to_string(++j) + ".svg",
-                      svg_structure(*r.c, {{A.run, sa, A.label, "at its capacity, d = " + mm(cmp.a.capacity) + " mm"},
-                                           {B.run, sb, B.label, "at its capacity, d = " + mm(cmp.b.capacity) + " mm"}},
+                      svg_structure(*r.c, {{A.run, sa, A.label, "at its capacity, d = " + mm(cmp.a.capacity) + " " + unit},
+                                           {B.run, sb, B.label, "at its capacity, d = " + mm(cmp.b.capacity) + " " + unit}},
                                     frame),
                       "each method at its own capacity"});
     }
@@ -122,9 +128,10 @@ std::vector<Figure> report_figures(const Report& r) {
 ojson report_json(const Report& r) {
   ojson j;
   j["format"] = "masonry-comparison/1";
-  j["units"] = "SI: m, N, s; thrust as reaction / total weight";
+  j["units"] = "SI: m, N, s, rad; thrust as reaction / total weight; d in d_unit";
   j["version"] = version_text();
   j["case"] = r.c->name;
+  j["d_unit"] = path_unit(*r.c);
   ojson runs = ojson::array();
   for (const ReportRun& rr : r.runs) {
     runs.push_back({{"label", rr.label},
@@ -134,6 +141,7 @@ ojson report_json(const Report& r) {
                     {"capacity", json_number(rr.run->capacity)},
                     {"collapsed", rr.run->collapsed},
                     {"stopped", status_name(rr.run->status)},
+                    {"message", rr.run->message},
                     {"time_s", json_number(rr.run->timing.total_s)},
                     {"settings", rr.run->settings}});
     if (rr.prd_on_run) runs.back()["prd_on_run"] = prd_on_run_json(*rr.prd_on_run);
@@ -147,6 +155,8 @@ ojson report_json(const Report& r) {
       lim["capacity"] = r.tolerances.capacity ? json_number(*r.tolerances.capacity) : ojson(nullptr);
       lim["capacity_abs"] = r.tolerances.capacity_abs ? json_number(*r.tolerances.capacity_abs) : ojson(nullptr);
       lim["thrust"] = r.tolerances.thrust ? json_number(*r.tolerances.thrust) : ojson(nullptr);
+      lim["mechanism"] = r.tolerances.mechanism ? json_number(*r.tolerances.mechanism) : ojson(nullptr);
+      lim["collapse_mechanism"] = r.tolerances.collapse_mechanism ? json_number(*r.tolerances.collapse_mechanism) : ojson(nullptr);
       lim["hinges"] = r.tolerances.hinges;
       lim["hinge_shift"] = r.tolerances.hinge_shift;
       c["tolerances"] = {{"limits", lim}, {"pass", r.violations[k].empty()}, {"violations", r.violations[k]}};
@@ -171,6 +181,20 @@ const Figure* find_figure(const std::vector<Figure>& figures, const std::string&
   return nullptr;
 }
 
+// The least mechanism agreement over the intervals of the common range, then the agreement at
+// collapse: "0.992 (at collapse 0.651)"; "n/a" where no interval has both runs' joints moving.
+std::string least_agreement_text(const Comparison& k) {
+  const MotionCheck* least = nullptr;
+  const MotionCheck* collapse = nullptr;
+  for (const MotionCheck& m : k.motion) {
+    if (m.collapse) collapse = &m;
+    else if (std::isfinite(m.agreement) && (!least || m.agreement < least->agreement)) least = &m;
+  }
+  std::string s = least ? fmt::number(least->agreement, "%.3f", least->agreement) : "n/a";
+  if (collapse && std::isfinite(collapse->agreement)) s += " (at collapse " + fmt::number(collapse->agreement, "%.3f", collapse->agreement) + ")";
+  return s;
+}
+
 // The headline: one column per run, the reference first.
 Table headline(const Report& r) {
   Table t;
@@ -182,27 +206,33 @@ Table headline(const Report& r) {
   };
   std::vector<Cell> cap, step, time;
   for (const ReportRun& rr : r.runs) {
-    cap.push_back(fmt::mm(rr.run->capacity) + (rr.run->collapsed ? "" : " (no collapse)"));
+    const RunStatus st = rr.run->status;
+    cap.push_back(fmt::mm(rr.run->capacity) + (st == RunStatus::collapse    ? ""
+                                               : st == RunStatus::max_steps ? " (no collapse)"
+                                                                            : " (" + std::string(status_name(st)) + ": last equilibrium)"));
     const auto recs = stable_records(*rr.run);
     step.push_back(recs.size() >= 2 ? fmt::mm(record_step(recs), 1) : "n/a");
     time.push_back(fmt::secs(rr.run->timing.total_s));
   }
-  std::vector<Cell> rel = {"-"}, tmax = {"-"}, trms = {"-"}, hinges = {"-"}, ratio_ = {"1"};
+  std::vector<Cell> rel = {"-"}, tmax = {"-"}, trms = {"-"}, mech = {"-"}, hinges = {"-"}, ratio_ = {"1"};
   for (const Comparison& k : r.comparisons) {
     rel.push_back(fmt::pct(k.capacity_rel_diff));
     tmax.push_back(fmt::g(k.thrust_max_diff));
     trms.push_back(fmt::g(k.thrust_rms_diff));
+    mech.push_back(least_agreement_text(k));
     int ok = 0;
     for (const HingeCheck& h : k.hinges) ok += h.ok(allowed_shift(r));
     hinges.push_back(std::to_string(ok) + " / " + std::to_string(k.hinges.size()));
     ratio_.push_back(ratio(k.time_ratio));
   }
-  row("capacity (mm)", cap);
+  const std::string unit = d_unit(r);
+  row("capacity (" + unit + ")", cap);
   row("relative to " + r.runs[0].label, rel);
   row("largest thrust difference (W)", tmax);
   row("rms thrust difference (W)", trms);
+  row("mechanism agreement (least)", mech);
   row("hinges match (of checks)", hinges);
-  row("step (mm)", step);
+  row("step (" + unit + ")", step);
   row("run time (s)", time);
   row("run time / " + r.runs[0].label, ratio_);
   t.align.assign(t.head.size(), Align::right);
@@ -212,13 +242,16 @@ Table headline(const Report& r) {
 
 }  // namespace
 
-std::string prd_on_run_explained(double tolerance) {
-  return "PRD started from the DEM's last equilibrium at or before 0.9 of its capacity (`masonry prd --from`), every block where "
-         "the DEM left it, its events located to " + fmt::mm(tolerance, 2) + " mm (the DEM's collapse bracket). Offsets kept: each "
-         "touching joint corner's elastic overlap and shear become the joint's geometry, the blocks rigid from there as the joints "
-         "had deformed them; taken back: PRD's first step undoes them, the blocks rigid as cut. Where the kept column meets the DEM's "
-         "capacity and the taken-back one PRD's from the case, the two methods agree on the deformed structure and their difference "
-         "is the geometry the DEM's elastic joints deform to (dem/README.md, \"What the compliance costs\").";
+Text prd_on_run_explained(double tolerance, const std::string& unit) {
+  return {"PRD started from the DEM's last equilibrium at or before 0.9 of its capacity (",
+          Cell("masonry prd --from", CellStyle::code),
+          "), every block where the DEM left it, its events located to " + fmt::mm(tolerance, 2) + " " + unit +
+              " (the DEM's collapse bracket). Offsets kept: each touching joint corner's elastic overlap and shear become the "
+              "joint's geometry, the blocks rigid from there as the joints had deformed them; taken back: PRD's first step undoes "
+              "them, the blocks rigid as cut. Where the kept column meets the DEM's capacity and the taken-back one PRD's from the "
+              "case, the two methods agree on the deformed structure and their difference is the geometry the DEM's elastic joints "
+              "deform to (",
+          Cell("dem/README.md", CellStyle::code), ", \"What the compliance costs\")."};
 }
 
 namespace {
@@ -227,8 +260,9 @@ namespace {
 // the elastic joints deform to.
 void deformed_section(Document& d, const Report& r) {
   Table t;
-  t.head = {"run", "from d (mm)", "its capacity (mm)", "PRD, offsets kept (mm)", "against the run", "PRD, taken back (mm)",
-            "PRD from the case (mm)"};
+  const std::string unit = d_unit(r);
+  t.head = {"run", "from d (" + unit + ")", "its capacity (" + unit + ")", "PRD, offsets kept (" + unit + ")", "against the run",
+            "PRD, taken back (" + unit + ")", "PRD from the case (" + unit + ")"};
   t.align.assign(t.head.size(), Align::right);
   t.align[0] = Align::left;
   double tolerance = 0;
@@ -241,7 +275,9 @@ void deformed_section(Document& d, const Report& r) {
                       fmt::mm(p.taken_back, 1), fmt::mm(p.own, 1)});
   }
   if (t.rows.empty()) return;
-  d.paragraph({Cell("PRD on the DEM's deformed configuration", CellStyle::strong), ": " + prd_on_run_explained(tolerance)});
+  Text intro{Cell("PRD on the DEM's deformed configuration", CellStyle::strong), ": "};
+  for (Cell& x : prd_on_run_explained(tolerance, unit)) intro.push_back(std::move(x));
+  d.paragraph(std::move(intro));
   d.table(std::move(t));
 }
 
@@ -251,7 +287,9 @@ void tolerance_section(Document& d, const Report& r) {
   std::string capacity = r.tolerances.capacity ? fmt::g(*r.tolerances.capacity * 100) + "%" : std::string();
   if (r.tolerances.capacity_abs) capacity += (capacity.empty() ? "" : " or ") + fmt::mm(*r.tolerances.capacity_abs, 1) + " mm";
   d.paragraph({"Limits: capacity " + (capacity.empty() ? std::string("not checked") : capacity) +
-               ", thrust " + (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) + ", hinges " +
+               ", thrust " + (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) + ", mechanism agreement " + (r.tolerances.mechanism ? "at least " + fmt::g(*r.tolerances.mechanism) : std::string("not checked")) +
+               (r.tolerances.collapse_mechanism ? ", at collapse at least " + fmt::g(*r.tolerances.collapse_mechanism) : std::string()) +
+               ", hinges " +
                (!r.tolerances.hinges            ? std::string("not checked")
                 : r.tolerances.hinge_shift == 0 ? std::string("must match")
                                                  : "must match within " + joints_text(r.tolerances.hinge_shift) + " along a ring") +
@@ -292,17 +330,18 @@ std::string slider_html(const Report& r, int frames) {
        "rings, joint resultants in blue, the thrust line in red, support reactions in green. Drag the slider (or use the arrow "
        "keys); the black line in the thrust curves below follows it.</p>\n"
     << "<div id=\"controls\"><input type=\"range\" id=\"slider\" min=\"0\" max=\"" << (fd.empty() ? 0 : fd.size() - 1)
-    << "\" value=\"0\" step=\"1\" aria-label=\"support displacement step\"><span id=\"frame-label\"></span></div>\n";
+    << "\" value=\"0\" step=\"1\" aria-label=\"support displacement step\" data-unit=\"" << d_unit(r)
+    << "\"><span id=\"frame-label\"></span></div>\n";
   for (size_t i = 0; i < fd.size(); ++i) {
     std::vector<Panel> panels;
-    for (const ReportRun& rr : r.runs) panels.push_back(panel(rr, record_at(*rr.run, fd[i]), fd[i]));
+    for (const ReportRun& rr : r.runs) panels.push_back(panel(rr, record_at(*rr.run, fd[i]), fd[i], d_unit(r)));
     char dd[32];
     std::snprintf(dd, sizeof dd, "%.9g", fd[i]);
     std::string id = "f";  // distinct SVG ids per frame
     id += std::to_string(i);
     id += '-';
     o << "<div class=\"frame\" data-d=\"" << dd << "\" data-index=\"" << i << "\"" << (i ? " hidden" : "") << ">\n"
-      << svg_structure(c, panels, frame, pw, id) << "</div>\n";
+      << svg_structure(c, panels, frame, pw, id, false) << "</div>\n";
   }
   return o.str();
 }
@@ -325,16 +364,62 @@ std::vector<Item> settled_cracks(const Report& r) {
   return items;
 }
 
+// The mechanism checks: per interval of d, how alike the two runs' joint motions are, and where
+// they differ most (compare/README.md, "Mechanism agreement").
+void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
+  const std::string unit = d_unit(r);
+  d.heading(3, {"Mechanism agreement"});
+  d.paragraph({"Whether the two runs move the same way over each interval of d: every joint corner's relative displacement (the "
+               "two blocks' copies of the corner, so the supports' imposed motion counts for nothing), weighted by the normal force "
+               "the joint carries over W, and the cosine of the two runs' vectors: 1 for the same mechanism at any amplitude, 0 for "
+               "motions at other joints or in other directions; n/a where one run's joints do not move (blocks carried rigidly by "
+               "their supports)." +
+               std::string(cmp.symmetric ? " The scene is symmetric: the mirror image of the second run counts when it agrees better." : "") +
+               (cmp.ring_shift > 0 ? " A joint's motion may sit up to " + joints_text(cmp.ring_shift) +
+                                         " along a ring from the other run's, as a hinge may (the tolerances' hinge_shift; in brackets "
+                                         "the agreement at the same joints where that is lower)."
+                                   : std::string()) +
+               " The last row compares how the runs collapse, from each one's last equilibrium to its collapse state: the DEM's is its "
+               "fall when a block has drifted 2% of the scene, PRD's the configuration one step past its capacity, so large motions "
+               "past the first one take part. Where the agreement is below 1, the joints that differ most (their share of the "
+               "difference) and what each run does there (the second block's turn relative to the first, each corner's opening, the "
+               "slip). The hinge table below is the diagnostic of open corners at the interval ends."});
+  Table t;
+  t.head = {"d (" + unit + ")", "agreement", "differs most at"};
+  t.align = {Align::right, Align::right, Align::left};
+  for (const MotionCheck& m : cmp.motion) {
+    std::string where = m.collapse ? "at collapse: " + cmp.a.label + " from " + fmt::mm(m.a_from) + ", " + cmp.b.label + " from " + fmt::mm(m.b_from)
+                                   : fmt::mm(m.from) + " to " + fmt::mm(m.to);
+    std::string agree = std::isfinite(m.agreement) ? fmt::number(m.agreement, "%.3f", m.agreement) + (m.mirror ? " (mirror image)" : "")
+                        : !m.a_moves && !m.b_moves ? "n/a (no joint moves in either run)"
+                                                   : "n/a (no joint moves in " + (!m.a_moves ? cmp.a.label : cmp.b.label) + ")";
+    if (std::isfinite(m.agreement) && m.same_joints < m.agreement - 5e-4) agree += " (" + fmt::number(m.same_joints, "%.3f", m.same_joints) + ")";
+    std::string most;
+    for (const MotionDiff& x : m.differ) {
+      if (x.share < 0.05) continue;  // a minor part of the difference
+      most += (most.empty() ? "" : "; ") + x.label + " (" + fmt::number(x.share * 100, "%.0f%%", x.share * 100) + "): " + cmp.a.label + " " +
+              joint_motion_text(x.a) + "; " + cmp.b.label + " " + joint_motion_text(x.b);
+    }
+    const std::optional<double>& limit = m.collapse ? r.tolerances.collapse_mechanism : r.tolerances.mechanism;
+    const bool low = r.tolerances_checked && limit && m.agreement < *limit;
+    // What differs is listed where the agreement reads below 1.000.
+    const bool differs = std::isfinite(m.agreement) && m.agreement < 0.9995 && !most.empty();
+    t.rows.push_back({where, low ? Cell(agree, CellStyle::strong) : Cell(agree), differs ? Cell(most) : Cell("-")});
+  }
+  d.table(std::move(t));
+}
+
 void comparison_section(Document& d, const Report& r, size_t k, const std::vector<Figure>& figures, bool page) {
   const Comparison& cmp = r.comparisons[k];
   const std::string n = std::to_string(k + 1);
+  const std::string unit = d_unit(r);
   d.heading(2, {cmp.a.label + " against " + cmp.b.label});
   d.heading(3, {"Thrust curves"});
   std::string p = "Horizontal (H) and vertical (V) reaction of every support over the total weight W = " + fmt::kn(cmp.total_weight) +
-                  " kN, against d. Compared on the common range d = 0 to " + fmt::mm(cmp.d_max) + " mm (" + std::to_string(cmp.d.size()) +
-                  " points, every record of either run, linear interpolation between records): largest difference " +
-                  fmt::g(cmp.thrust_max_diff) + " W (" + cmp.thrust_max_where + " at d = " + fmt::mm(cmp.thrust_max_d) +
-                  " mm), root-mean-square " + fmt::g(cmp.thrust_rms_diff) + " W.";
+                  " kN, against d. Compared on the common range d = 0 to " + fmt::mm(cmp.d_max) + " " + unit + " (" +
+                  std::to_string(cmp.d.size()) + " points, every record of either run, linear interpolation between records): largest difference " +
+                  fmt::g(cmp.thrust_max_diff) + " W (" + cmp.thrust_max_where + " at d = " + fmt::mm(cmp.thrust_max_d) + " " + unit +
+                  "), root-mean-square " + fmt::g(cmp.thrust_rms_diff) + " W.";
   if (cmp.thrust_max_d == 0.0 && cmp.d_max > 0)
     p += " At d = 0 the structure is statically indeterminate: PRD reports one admissible force state among many, the DEM "
          "the one its settling under gravity finds, so a difference there is expected (the paper, Section 4: PRD gives \"just one of "
@@ -342,8 +427,8 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   // A run without reactions (an outside solver's minimal results): said, and no empty table.
   d.paragraph({cmp.thrust_skipped.empty() ? p : "Thrust curves " + cmp.thrust_skipped + "."});
   Table sup;
-  sup.head = {"support", "largest difference (W)", "H at d = " + fmt::mm(cmp.d_max) + " mm, " + cmp.a.label + " / " + cmp.b.label,
-              "V at d = " + fmt::mm(cmp.d_max) + " mm"};
+  sup.head = {"support", "largest difference (W)", "H at d = " + fmt::mm(cmp.d_max) + " " + unit + ", " + cmp.a.label + " / " + cmp.b.label,
+              "V at d = " + fmt::mm(cmp.d_max) + " " + unit};
   sup.align = {Align::left, Align::right, Align::right, Align::right};
   for (const SupportCurve& s : cmp.supports) {
     const bool e = !s.h_a.empty();
@@ -355,8 +440,10 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
     // The page's copy carries the cursor the slider moves.
     d.figure(f->file, f->caption, page ? svg_thrust(cmp, *r.runs[0].run, *r.runs[k + 1].run, true) : std::string());
   d.heading(3, {"Mechanism changes"});
-  d.paragraph({"d (mm) where the set of open joint corners changes (a state held for a single record is taken as flicker and not counted):"});
-  d.list({{{cmp.a.label + ": " + changes_mm(cmp.a)}, {}}, {{cmp.b.label + ": " + changes_mm(cmp.b)}, {}}});
+  d.paragraph({"d (" + unit + ") where the set of open joint corners changes (a state held for a single record is taken as flicker and not "
+               "counted):"});
+  d.list({{{cmp.a.label + ": " + changes_text(cmp.a)}, {}}, {{cmp.b.label + ": " + changes_text(cmp.b)}, {}}});
+  mechanism_section(d, r, cmp);
   d.heading(3, {"Hinges"});
   if (!cmp.hinges_skipped.empty()) d.paragraph({"Hinges " + cmp.hinges_skipped + " (open corners name joints)."});
   d.paragraph({"A hinge is a joint with exactly one open corner; listed as ", Cell("block/block:corner", CellStyle::code),
@@ -376,7 +463,7 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
                  "redistributes the weight; a hinge of the mechanism opens in proportion to d. Both runs are read by this rule, and "
                  "the drawings mark hinges by it (compare/compare.hpp, settled_gap)."});
   Table h;
-  h.head = {"d (mm)", cmp.a.label, cmp.b.label, "agree"};
+  h.head = {"d (" + unit + ")", cmp.a.label, cmp.b.label, "agree"};
   h.align = {Align::right, Align::left, Align::left, Align::left};
   for (const HingeCheck& x : cmp.hinges) {
     const std::string apart = x.shift > 0 ? joints_text(x.shift) + " apart" : std::string();
@@ -402,13 +489,49 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
     }
 }
 
+// Each run, how it ended and why (an undecided or failed run's message).
 Table runs_table(const Report& r) {
   Table t;
-  t.head = {"run", "results", "stopped", "settings"};
+  t.head = {"run", "results", "stopped", "why"};
   t.align.assign(4, Align::left);
   for (const ReportRun& rr : r.runs)
-    t.rows.push_back({rr.label, rr.dir.empty() ? Cell("-") : Cell(rr.dir, CellStyle::link, rr.dir + "/results.json"),
-                      status_name(rr.run->status), Cell(rr.run->settings.dump(), CellStyle::code)});
+    t.rows.push_back({rr.label, rr.dir.empty() ? Cell("-") : Cell(rr.dir, CellStyle::link, rr.dir + "/results.json"), status_name(rr.run->status),
+                      rr.run->message.empty() ? Cell("-") : Cell(rr.run->message)});
+  return t;
+}
+
+// The runs' settings, one row per setting and a column per run, so that no cell runs off the page.
+Table settings_table(const Report& r) {
+  Table t;
+  t.head = {"setting"};
+  std::vector<std::string> keys;
+  for (const ReportRun& rr : r.runs) {
+    t.head.push_back(rr.label);
+    for (auto it = rr.run->settings.begin(); it != rr.run->settings.end(); ++it)
+      if (std::find(keys.begin(), keys.end(), it.key()) == keys.end()) keys.push_back(it.key());
+  }
+  for (const std::string& key : keys) {
+    std::vector<Cell> row{Cell(key, CellStyle::code)};
+    for (const ReportRun& rr : r.runs) {
+      const auto it = rr.run->settings.find(key);
+      if (it == rr.run->settings.end()) {
+        row.push_back("-");
+      } else if (it->is_number()) {
+        row.push_back(fmt::g(it->get<double>(), 6));
+      } else if (it->is_string()) {
+        row.push_back(it->get<std::string>());
+      } else if (it->is_array()) {  // a list of texts (held corners): one per line's worth, comma-separated
+        std::string list;
+        for (const auto& v : *it) list += (list.empty() ? "" : ", ") + (v.is_string() ? v.get<std::string>() : v.dump());
+        row.push_back(list);
+      } else {
+        row.push_back(it->dump());
+      }
+    }
+    t.rows.push_back(std::move(row));
+  }
+  t.align.assign(t.head.size(), Align::right);
+  t.align[0] = Align::left;
   return t;
 }
 
@@ -436,6 +559,8 @@ Document report_document(const Report& r, const std::vector<Figure>& figures, in
   for (size_t k = 0; k < r.comparisons.size(); ++k) comparison_section(d, r, k, figures, page);
   d.heading(2, {"Runs"});
   d.table(runs_table(r));
+  d.paragraph({"Their settings (", Cell("results.json", CellStyle::code), ", ", Cell("settings", CellStyle::code), "; SI units, friction in degrees):"});
+  d.table(settings_table(r));
   d.paragraph({"Numbers: ", Cell("comparison.json", CellStyle::code), "."});
   return d;
 }
@@ -463,7 +588,7 @@ const char* kSliderScript =
     "    for(var k=0;k<frames.length;++k)frames[k].hidden=(k!==i);\n"
     "    slider.value=String(i);\n"
     "    var d=parseFloat(frames[i].getAttribute('data-d'));\n"
-    "    label.textContent='d = '+(d*1000).toFixed(1)+' mm (step '+(i+1)+' of '+frames.length+')';\n"
+    "    label.textContent='d = '+(d*1000).toFixed(1)+' '+slider.getAttribute('data-unit')+' (step '+(i+1)+' of '+frames.length+')';\n"
     "    document.body.setAttribute('data-frame',String(i));\n"
     "    var plots=document.querySelectorAll('svg.thrust');\n"
     "    for(var p=0;p<plots.length;++p){\n"

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "compare/compare.hpp"
+#include "report/document.hpp"
 
 namespace masonry {
 
@@ -49,8 +50,8 @@ nlohmann::ordered_json report_json(const Report& r);
 std::string report_markdown(const Report& r, const std::vector<Figure>& figures);
 std::string report_html(const Report& r, const std::vector<Figure>& figures, int frames = 0);
 // What the reports say of PRD on a DEM run's deformed configuration (PrdOnRun), before its
-// table: one text for the comparison's report and the DEM studies'.
-std::string prd_on_run_explained(double tolerance);
+// table: one text for the comparison's report and the DEM studies'. `unit`: d's, x 1000 ("mm").
+Text prd_on_run_explained(double tolerance, const std::string& unit);
 
 // Writes DIR/comparison.json, DIR/report.md, DIR/report.html and DIR/figures/*.svg.
 void write_report(const std::string& dir, const Report& r);

@@ -44,6 +44,42 @@ struct Map {
   std::string P(const Vec2& p) const { return px(X(p.x())) + "," + px(Y(p.y())); }
 };
 
+// Path data in tenths of a pixel, each point after the first relative to the one before ("M187.5,
+// 503.7l-25.4,0 0,10.5z"): the slider repeats every drawing 24 to 60 times in one page, where
+// absolute coordinates with a fixed decimal made a cathedral's report.html 3.8 MB.
+class PathData {
+ public:
+  explicit PathData(const Map& m) : m_(m) {}
+  // A subpath through `pts` (a single point: a dot), closed with `close`.
+  void polyline(const std::vector<Vec2>& pts, bool close) {
+    if (pts.empty()) return;
+    long x0 = 0, y0 = 0;
+    for (size_t k = 0; k < pts.size(); ++k) {
+      const long x = tenths(m_.X(pts[k].x())), y = tenths(m_.Y(pts[k].y()));
+      // Appended piece by piece: GCC 12 warns (-Wrestrict, falsely) about "M" + std::string.
+      d_.append(1, k == 0 ? 'M' : k == 1 ? 'l' : ' ').append(text(k == 0 ? x : x - x0)).append(1, ',').append(text(k == 0 ? y : y - y0));
+      x0 = x;
+      y0 = y;
+    }
+    if (close) d_ += 'z';
+    if (pts.size() == 1) d_ += "h0";  // a dot: a zero-length segment drawn with round caps
+  }
+  const std::string& str() const { return d_; }
+  bool empty() const { return d_.empty(); }
+
+ private:
+  static long tenths(double v) { return std::isfinite(v) ? std::lround(v * 10) : 0; }
+  static std::string text(long t) {  // tenths as a decimal number: 1875 -> "187.5", 1870 -> "187", -5 -> "-0.5"
+    std::string out = t < 0 ? "-" : "";
+    const long a = std::labs(t);
+    out += std::to_string(a / 10);
+    if (a % 10) out.append(1, '.').append(std::to_string(a % 10));
+    return out;
+  }
+  const Map& m_;
+  std::string d_;
+};
+
 std::string arrow_defs(const std::string& id) {
   std::string s = "<defs><marker id=\"";
   s += id;
@@ -76,7 +112,7 @@ bool reaction_point(const RunResult& r, const StepRecord& s, int support, Vec2& 
 }
 
 void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const DrawFrame& f, const Map& m, double width,
-                const std::string& id) {
+                const std::string& id, bool titles) {
   o << "<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.oy - 24) << "\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">"
     << xml_escape(pn.title) << "</text>\n<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.oy - 7)
     << "\" text-anchor=\"middle\" font-size=\"13\">" << xml_escape(pn.subtitle) << "</text>\n";
@@ -84,42 +120,57 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
   const RunResult& r = *pn.run;
   const StepRecord& s = *pn.record;
   const Placer pl(c, s);
-  // Blocks.
-  o << "<g stroke=\"#6b6b6b\" stroke-width=\"0.7\" stroke-linejoin=\"round\">\n";
-  for (size_t b = 0; b < c.blocks.size(); ++b) {
-    const Block& B = c.blocks[b];
-    o << "<polygon fill=\"" << (B.support ? "url(#" + id + "hatch)" : std::string("#eadfca")) << "\" points=\"";
-    for (const Vec2& v : B.vertices) o << m.P(pl.at(int(b), v)) << " ";
-    o << "\"><title>" << xml_escape(B.id) << "</title></polygon>\n";
+  // Blocks: free blocks share one fill, supports the hatching; with `titles` each is a path of
+  // its own with its id as a tooltip, else each group is one path. Segments and dots below go into
+  // one path each (a scene of 300 joints drawn at 24 slider positions in two panels: separate
+  // <line> and <circle> elements made a cathedral's report.html 3.8 MB).
+  for (int support = 0; support < 2; ++support) {
+    o << "<g stroke=\"#6b6b6b\" stroke-width=\"0.7\" stroke-linejoin=\"round\" fill=\""
+      << (support ? "url(#" + id + "hatch)" : std::string("#eadfca")) << "\">\n";
+    PathData group(m);
+    for (size_t b = 0; b < c.blocks.size(); ++b) {
+      const Block& B = c.blocks[b];
+      if (B.support != bool(support)) continue;
+      std::vector<Vec2> pts;
+      for (const Vec2& v : B.vertices) pts.push_back(pl.at(int(b), v));
+      if (!titles) {
+        group.polyline(pts, true);
+        continue;
+      }
+      PathData one(m);
+      one.polyline(pts, true);
+      o << "<path d=\"" << one.str() << "\"><title>" << xml_escape(B.id) << "</title></path>\n";
+    }
+    if (!group.empty()) o << "<path d=\"" << group.str() << "\"/>\n";
+    o << "</g>\n";
   }
-  o << "</g>\n";
   // Cracked joints: both faces bold, so an opening shows as a wedge between two black lines.
   std::vector<int> open_count(r.joints.size(), 0);
   for (const OpenCorner& oc : s.open_corners)
     if (oc.joint >= 0 && oc.joint < int(open_count.size())) ++open_count[oc.joint];
-  o << "<g stroke=\"#111\" stroke-width=\"3\" stroke-linecap=\"round\">\n";
+  PathData cracks(m);
   for (size_t j = 0; j < r.joints.size(); ++j) {
     if (!open_count[j]) continue;
     const JointInfo& J = r.joints[j];
-    for (int side : {J.i, J.j})
-      o << "<line x1=\"" << px(m.X(pl.at(side, J.a).x())) << "\" y1=\"" << px(m.Y(pl.at(side, J.a).y())) << "\" x2=\""
-        << px(m.X(pl.at(side, J.b).x())) << "\" y2=\"" << px(m.Y(pl.at(side, J.b).y())) << "\"/>\n";
+    for (int side : {J.i, J.j}) cracks.polyline({pl.at(side, J.a), pl.at(side, J.b)}, false);
   }
-  o << "</g>\n";
-  // Joint resultants: a segment through the pressure point along the force, length ~ F / W.
-  // Smaller pressure-point dots when joints are many, or a pier becomes a string of beads.
-  const char* dot = r.joints.size() > 60 ? "1.3" : "2.2";
-  o << "<g stroke=\"" << kForce << "\" stroke-width=\"1.6\" fill=\"" << kForce << "\">\n";
+  if (!cracks.empty()) o << "<path stroke=\"#111\" stroke-width=\"3\" stroke-linecap=\"round\" fill=\"none\" d=\"" << cracks.str() << "\"/>\n";
+  // Joint resultants: a segment through the pressure point along the force, length ~ F / W, and
+  // the pressure point as a dot (a zero-length segment with round caps). Smaller dots when
+  // joints are many, or a pier becomes a string of beads.
+  const char* dot = r.joints.size() > 60 ? "2.6" : "4.4";
+  PathData segments(m), dots(m);
   for (const JointForce& jf : s.forces) {
     if (!std::isfinite(jf.normal) || jf.normal <= 0) continue;
     const Vec2 t(-jf.n.y(), jf.n.x());
     const Vec2 F = jf.normal * jf.n + jf.shear * t;
     const Vec2 h = 0.5 * F / f.weight * f.force_len;
-    o << "<line x1=\"" << px(m.X(jf.point.x() - h.x())) << "\" y1=\"" << px(m.Y(jf.point.y() - h.y())) << "\" x2=\""
-      << px(m.X(jf.point.x() + h.x())) << "\" y2=\"" << px(m.Y(jf.point.y() + h.y())) << "\"/>"
-      << "<circle cx=\"" << px(m.X(jf.point.x())) << "\" cy=\"" << px(m.Y(jf.point.y())) << "\" r=\"" << dot << "\"/>\n";
+    segments.polyline({jf.point - h, jf.point + h}, false);
+    dots.polyline({jf.point}, false);
   }
-  o << "</g>\n";
+  if (!segments.empty())
+    o << "<path stroke=\"" << kForce << "\" stroke-width=\"1.6\" fill=\"none\" d=\"" << segments.str() << "\"/>\n<path stroke=\"" << kForce
+      << "\" stroke-width=\"" << dot << "\" stroke-linecap=\"round\" fill=\"none\" d=\"" << dots.str() << "\"/>\n";
   // Thrust line: through the pressure points, joined across every free block that carries force
   // on exactly two joints (an arch ring, a pier shaft); branching blocks show their resultants only.
   std::map<int, std::vector<Vec2>> per_block;
@@ -129,10 +180,10 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     for (int b : {J.i, J.j})
       if (b >= 0 && b < int(c.blocks.size()) && !c.blocks[b].support) per_block[b].push_back(jf.point);
   }
-  o << "<g stroke=\"" << kThrustLine << "\" stroke-width=\"2\" fill=\"none\">\n";
+  PathData thrust(m);
   for (const auto& [b, pts] : per_block)
-    if (pts.size() == 2) o << "<line x1=\"" << px(m.X(pts[0].x())) << "\" y1=\"" << px(m.Y(pts[0].y())) << "\" x2=\"" << px(m.X(pts[1].x())) << "\" y2=\"" << px(m.Y(pts[1].y())) << "\"/>\n";
-  o << "</g>\n";
+    if (pts.size() == 2) thrust.polyline(pts, false);
+  if (!thrust.empty()) o << "<path stroke=\"" << kThrustLine << "\" stroke-width=\"2\" fill=\"none\" d=\"" << thrust.str() << "\"/>\n";
   // Hinges: the closed corner of a joint with one open corner.
   o << "<g fill=\"#fff\" stroke=\"" << kHinge << "\" stroke-width=\"2.2\">\n";
   for (const Hinge& h : hinges_of(c, r, s, f.hinge_gap)) {
@@ -229,7 +280,7 @@ DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs) {
 }
 
 std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const DrawFrame& f, double panel_width,
-                          const std::string& id) {
+                          const std::string& id, bool titles) {
   const double gap = 20, top = 46, legend_h = 64;
   const double s = panel_width / std::max(1e-12, f.hi.x() - f.lo.x());
   const double ph = (f.hi.y() - f.lo.y()) * s;
@@ -242,7 +293,7 @@ std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const
   for (size_t k = 0; k < panels.size(); ++k) {
     const Map m{gap + k * (panel_width + gap), top, s, f.lo.x(), f.hi.y()};
     o << "<g class=\"panel\">\n";
-    draw_panel(o, c, panels[k], f, m, panel_width, id);
+    draw_panel(o, c, panels[k], f, m, panel_width, id, titles);
     o << "</g>\n";
   }
   // Legend, with a force scale bar of 0.1 W.
@@ -312,13 +363,13 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
     const Plot plot{left, oy, pw, ph, 0, dmax, lo, hi};
     const auto X = [&](double d) { return plot.X(d); };
     const auto Y = [&](double v) { return plot.Y(v); };
-    o << svg_axes(plot, linear_ticks(0, dmax, 8, 4, 1000), linear_ticks(lo, hi, 6, 3), "support displacement d (mm)",
+    o << svg_axes(plot, linear_ticks(0, dmax, 8, 4, 1000), linear_ticks(lo, hi, 6, 3), (k.d_unit == "rad" ? "support rotation d (" : "support displacement d (") + milli(k.d_unit) + ")",
                   comp == 0 ? "horizontal reaction H / W" : "vertical reaction V / W");
     // Mechanism changes: ticks at the top (a) and the bottom (b) of the panel, and the capacities.
     const auto marks = [&](const RunSummary& rs, bool at_top, const char* dash) {
       for (double d : rs.changes)
         o << "<path d=\"M" << px(X(d)) << "," << px(at_top ? oy : oy + ph) << " l-4," << (at_top ? "-8" : "8") << " h8 z\" fill=\"#555\"><title>"
-          << xml_escape(rs.label) << ": mechanism changes at d = " << fmt::g(d * 1000, 4) << " mm</title></path>\n";
+          << xml_escape(rs.label) << ": mechanism changes at d = " << fmt::g(d * 1000, 4) << " " << milli(k.d_unit) << "</title></path>\n";
       o << "<line x1=\"" << px(X(rs.capacity)) << "\" x2=\"" << px(X(rs.capacity)) << "\" y1=\"" << px(oy) << "\" y2=\"" << px(oy + ph)
         << "\" stroke=\"#555\" stroke-width=\"1\" stroke-dasharray=\"" << dash << "\"/>\n";
     };
@@ -376,7 +427,7 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
   return o.str();
 }
 
-std::string svg_capacity(const std::vector<Bar>& bars) {
+std::string svg_capacity(const std::vector<Bar>& bars, const std::string& unit) {
   const double left = 150, bw = 480, bh = 26, gap = 12, top = 34;
   const double H = top + bars.size() * (bh + gap) + 30, W = left + bw + 110;
   double vmax = 0;
@@ -391,7 +442,7 @@ std::string svg_capacity(const std::vector<Bar>& bars) {
     o << "<text x=\"" << px(left - 8) << "\" y=\"" << px(y + bh / 2 + 5) << "\" text-anchor=\"end\" font-size=\"13\">" << xml_escape(bars[k].label)
       << "</text><rect x=\"" << px(left) << "\" y=\"" << px(y) << "\" width=\"" << px(w) << "\" height=\"" << px(bh) << "\" fill=\""
       << xml_escape(bars[k].color) << "\"/><text x=\"" << px(left + w + 6) << "\" y=\"" << px(y + bh / 2 + 5) << "\" font-size=\"13\">"
-      << (std::isfinite(bars[k].value) ? fmt::mm(bars[k].value) + " mm" : "n/a") << "</text>\n";
+      << (std::isfinite(bars[k].value) ? fmt::mm(bars[k].value) + " " + xml_escape(unit) : "n/a") << "</text>\n";
   }
   o << "<line x1=\"" << px(left) << "\" x2=\"" << px(left) << "\" y1=\"" << px(top - 4) << "\" y2=\"" << px(H - 26) << "\" stroke=\"#333\"/>\n</svg>\n";
   return o.str();

@@ -32,20 +32,23 @@ struct Panel {
 };
 // `id` prefixes the SVG's internal ids (pattern, marker): several drawings in one HTML page need
 // distinct ids, since a definition inside a hidden drawing does not render for the others.
+// `titles`: every block a path of its own with its id as a tooltip (the figures); without, the
+// blocks are one path per fill (the page's slider, which repeats the drawing at every position).
 std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const DrawFrame& f, double panel_width = 470,
-                          const std::string& id = "s");
+                          const std::string& id = "s", bool titles = true);
 
 // H/W and V/W of every support against d (mm), both runs over their own stable range, mechanism
 // changes marked, capacities marked. With `cursor`, the SVG carries a vertical cursor line per
 // panel (class "cursor") and data-x0 / data-sx (px at d = 0, px per m) for a script to move it.
 std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult& b, bool cursor = false);
 
-// Horizontal bars: capacity (mm) of each run, value printed at the bar's end.
+// Horizontal bars: capacity of each run, value printed at the bar's end in `unit` ("mm": d x 1000
+// with its unit, milli(path_unit)).
 struct Bar {
   std::string label;
   double value = 0.0;  // m
   std::string color;
 };
-std::string svg_capacity(const std::vector<Bar>& bars);
+std::string svg_capacity(const std::vector<Bar>& bars, const std::string& unit);
 
 }  // namespace masonry

@@ -93,6 +93,15 @@ Bounds scene_bounds(const Case& c) {
 
 double scene_size(const Case& c) { return scene_bounds(c).size(); }
 
+std::string path_unit(const Case& c) {
+  bool turns = false;
+  for (const SupportMotion& m : c.motion.supports) {
+    if (m.translation.x() != 0 || m.translation.y() != 0) return "m";
+    turns = turns || m.rotation != 0;
+  }
+  return turns ? "rad" : "m";
+}
+
 double block_mass(const Block& b) { return b.density * std::abs(signed_area(b.vertices)) * b.depth; }
 
 Vec2 dead_load_resultant(const Case& c) {

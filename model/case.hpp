@@ -198,6 +198,10 @@ Bounds bounds(const std::vector<Vec2>& points);
 Bounds scene_bounds(const Case& c);
 // Largest extent of all blocks' bounding box: the scene size used to scale tolerances.
 double scene_size(const Case& c);
+// The SI unit of the path parameter d, as reports write it: "rad" when every moving support only
+// turns (d is then an angle, a tilt), else "m" (a support that translates, with or without
+// turning, moves by d metres per unit).
+std::string path_unit(const Case& c);
 // Mass (kg) and weight (N) of a block: density * area * depth (* gravity).
 double block_mass(const Block& b);
 // Resultant of the dead loads (the free blocks' weights and the point loads), N: what the

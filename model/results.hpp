@@ -269,6 +269,7 @@ void write_results(const std::string& dir, const RunResult& r, const Case& c);
 // other than the last equilibrium's index, an unknown status, a block, support or joint the
 // case or the file does not have.
 RunResult parse_results(const std::string& text, const Case& c, const std::string& source);
+// load_results reads `path`, or `path`.xz where only that is there (read_text_or_xz).
 RunResult load_results(const std::string& path, const Case& c);
 
 }  // namespace masonry

@@ -426,7 +426,7 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
 }
 
 RunResult load_results(const std::string& path, const Case& c) {
-  std::optional<std::string> text = read_text(path);
+  std::optional<std::string> text = read_text_or_xz(path);  // the runs under reports/ are results.json.xz
   if (!text) throw std::runtime_error(path + ": cannot read");
   return parse_results(*text, c, path);
 }

@@ -1,6 +1,7 @@
 #include "report/escape.hpp"
 
 #include <algorithm>
+#include <cctype>
 
 namespace masonry {
 
@@ -52,24 +53,52 @@ std::string xml_escape(const std::string& s) {
   return o;
 }
 
+namespace {
+
+// Whether the text from position k on reads as an HTML entity or numeric reference ("&gt;",
+// "&#39;"): only then does a '&' need escaping, so "Romano & Ochsendorf" stays as written.
+bool entity_at(const std::string& s, size_t k) {
+  size_t e = k + 1;
+  if (e < s.size() && s[e] == '#') ++e;
+  const size_t start = e;
+  while (e < s.size() && std::isalnum(static_cast<unsigned char>(s[e]))) ++e;
+  return e > start && e < s.size() && s[e] == ';';
+}
+
+// Whether a '<' at position k opens a tag, a comment or an autolink (a letter, '/', '!' or '?'
+// follows): only then does it need escaping, so "-> 3 < 4" stays as written.
+bool tag_at(const std::string& s, size_t k) {
+  if (k + 1 >= s.size()) return false;
+  const char n = s[k + 1];
+  return std::isalpha(static_cast<unsigned char>(n)) || n == '/' || n == '!' || n == '?';
+}
+
+}  // namespace
+
 std::string md_escape(const std::string& s) {
   std::string o;
   o.reserve(s.size());
   for (size_t k = 0; k < s.size(); ++k) {
     const char ch = s[k];
     switch (ch) {
-      // Raw HTML is never passed through: a case name cannot open a tag.
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
+      // Raw HTML is never passed through (a case name cannot open a tag), by backslash escapes
+      // where the character would act, not entities: report.md is read as text too.
+      case '&':
+        if (entity_at(s, k)) o += '\\';
+        o += ch;
+        break;
+      case '<':
+        if (tag_at(s, k)) o += '\\';
+        o += ch;
+        break;
       case '\n': case '\r': o += ' '; break;
       // Emphasis, code, links and images ('!' and '(' only act after '[' or ']'), tables and
-      // strike-through; '#' makes a heading only at the start of a line.
+      // strike-through; '#' makes a heading and '>' a quotation only at the start of a line.
       case '\\': case '`': case '*': case '_': case '[': case ']': case '|': case '~':
         o += '\\';
         o += ch;
         break;
-      case '#':
+      case '#': case '>':
         if (k == 0) o += '\\';
         o += ch;
         break;

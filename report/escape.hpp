@@ -18,8 +18,9 @@ size_t utf8_char(std::string_view s, size_t i, unsigned& cp);
 // U+FFFD.
 std::string xml_escape(const std::string& s);
 
-// Text for Markdown: HTML special characters as entities and Markdown punctuation escaped; a
-// line break becomes a space (a table row is one line).
+// Text for Markdown: Markdown punctuation and any '<' that would open a tag or '&' that would read
+// as an entity escaped with a backslash (no HTML entities: report.md is read as text too); a line
+// break becomes a space (a table row is one line).
 std::string md_escape(const std::string& s);
 
 // Text for a Markdown code span: a code span cannot escape a backtick, so backticks become

@@ -40,6 +40,14 @@ inline std::string secs(double s) {
   return number(s, "%.2g", s);
 }
 
+// A duration as a reader says it: "0.96 ms", "3.8 ms", "790 ms" below a second, "12.5 s" above.
+inline std::string duration(double s) {
+  const double ms = s * 1000;
+  if (!std::isfinite(s)) return "n/a";
+  if (std::abs(s) < 1) return number(ms, std::abs(ms) >= 100 ? "%.0f ms" : "%.2g ms", ms);
+  return secs(s) + " s";
+}
+
 // An SVG coordinate in px: one decimal; a non-finite one (an empty range) at 0 rather than a
 // "n/a" that would break the drawing.
 inline std::string px(double x) {

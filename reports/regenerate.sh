@@ -7,6 +7,11 @@
 #
 # Uses build/app/masonry (override with MASONRY=path). A case that exceeds a limit still gets
 # its report (which says which limit); the script lists those cases and exits 1.
+#
+# The runs are kept compressed (results.json.xz, xz -9e: a sixth of the 2-10 MB of JSON each;
+# `masonry compare --runs`, `prd --from` and `tradeoff --reference-dem` read a results.json.xz
+# where results.json is asked for). A results.json found in a run directory (a new run, or one
+# copied in from a DEM study) is compressed after the report is drawn, replacing the older .xz.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 masonry=${MASONRY:-build/app/masonry}
@@ -23,6 +28,8 @@ declare -A extra=(
   [cathedral-settlement-rotation]=""
 )
 failed=()
+# Compresses the runs of a comparison directory (every results.json under it).
+pack() { find "$1" -mindepth 2 -maxdepth 2 -name results.json -exec xz -9e -f {} \; ; }
 # A report's notes.txt, where there is one, says in mechanical terms why a check fails.
 notes() { [ -f "$1/notes.txt" ] && echo "--notes $1/notes.txt"; }
 for name in pointed-arch cathedral-settlement cathedral-settlement-rotation; do
@@ -34,6 +41,7 @@ for name in pointed-arch cathedral-settlement cathedral-settlement-rotation; do
     # shellcheck disable=SC2086
     "$masonry" compare cases/$name.json --out "$out" --friction 35 ${extra[$name]} --tolerances $tolerances $(notes "$out") || failed+=("$name")
   fi
+  pack "$out"
 done
 # The settlement scene with joints 30 times stiffer than the case's (dem/README.md, "Joint
 # stiffness"): PRD's blocks are rigid, the limit of stiffening joints, so this shows whether the
@@ -46,6 +54,7 @@ if [ $render = 0 ]; then
   "$masonry" dem cases/cathedral-settlement.json --friction 35 --stiffness-reduction 0.03333333333333333 --hold-time 150 --out "$out/dem" --quiet
 fi
 "$masonry" compare cases/cathedral-settlement.json --out "$out" --runs reports/compare-cathedral-settlement/prd "$out/dem" --tolerances $tolerances $(notes "$out") --quiet
+pack "$out"
 if [ ${#failed[@]} -gt 0 ]; then
   echo "regenerate: limits exceeded (or a run failed) for: ${failed[*]} (see their report.md)" >&2
   exit 1

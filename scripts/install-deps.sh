@@ -8,6 +8,7 @@ packages=(
   libglpk-dev                      # the PRD linear programs
   libbox2d-dev                     # DEM contact geometry
   nlohmann-json3-dev               # case and result files
+  liblzma-dev xz-utils             # the runs kept under reports/ as results.json.xz (read; xz writes them)
   libcli11-dev                     # the command line
   libopenmpi-dev openmpi-bin       # masonry sweep across machines (mpirun); its tests start mpirun
   libgtest-dev                     # tests

@@ -106,8 +106,10 @@ int run_tradeoff_command(const TradeoffOpts& o) {
     if (dir.empty()) continue;
     if (std::find(o.methods.begin(), o.methods.end(), m) == o.methods.end())
       throw std::runtime_error("--reference-" + m + " given, but " + m + " is not among --methods");
-    // Fail before any long run when the reference cannot be read.
-    if (!fs::exists(fs::path(dir) / "results.json")) throw std::runtime_error(dir + "/results.json: no such file (--reference-" + m + ")");
+    // Fail before any long run when the reference cannot be read (results.json, or the .xz the
+    // runs kept under reports/ are).
+    if (!fs::exists(fs::path(dir) / "results.json") && !fs::exists(fs::path(dir) / "results.json.xz"))
+      throw std::runtime_error(dir + "/results.json: no such file (--reference-" + m + ")");
     ro.reference_dir[m] = dir;
     reused.push_back(m);
   }
@@ -128,6 +130,7 @@ int run_tradeoff_command(const TradeoffOpts& o) {
     return 0;
   }
   t.case_name = base.name;
+  t.d_unit = path_unit(base);
   t.command = command_line(o);
   t.plan = plan;
   t.methods = o.methods;

@@ -54,6 +54,7 @@ std::string weight(double x) {
   if (x == 0) return "0 W";
   return fmt::number(x, std::abs(x) < 1e-3 ? "%.1e W" : "%.4f W", x);
 }
+// d x 1000, in mm or mrad (Tradeoff::d_unit).
 std::string mm(double m) { return fmt::mm(m, 1); }
 
 std::string method_name(const std::string& m) { return m == "prd" ? "PRD" : m == "dem" ? "DEM" : m; }
@@ -107,8 +108,9 @@ Table method_table(const Tradeoff& t, const std::string& method) {
   const Front fc = front_of(rows, ErrorKind::capacity), ft = front_of(rows, ErrorKind::thrust);
   const auto on = [](const Front& f, size_t i) { return std::find(f.front.begin(), f.front.end(), i) != f.front.end(); };
   Table tb;
-  tb.head = {"setting", "options", "stopped", "capacity (mm)", "capacity error", "thrust error max / rms (W)",
-             "over d (mm)", "time (s)", "wall (s)", method == "prd" ? "LP solves" : "cycles", "Pareto"};
+  const std::string unit = std::string(1, 'm').append(t.d_unit);  // d x 1000: mm, or mrad for a turning support
+  tb.head = {"setting", "options", "stopped", "capacity (" + unit + ")", "capacity error", "thrust error max / rms (W)",
+             "over d (" + unit + ")", "time (s)", "wall (s)", method == "prd" ? "LP solves" : "cycles", "Pareto"};
   // Names, options and status left; numbers right, even where a cell adds a unit or a range.
   tb.align.assign(tb.head.size(), Align::right);
   for (int k = 0; k < 3; ++k) tb.align[k] = Align::left;
@@ -196,10 +198,8 @@ std::vector<std::string> summary_lines(const Tradeoff& t) {
         s += " Most accuracy per second: ";
         for (size_t n = 0; n < f.buys.size() && n < 3; ++n) {
           const Buy& b = f.buys[n];
-          const std::string per = k == ErrorKind::capacity ? fmt::number(b.rate * 100, "%.3g", b.rate * 100) + " points of capacity error"
-                                                           : fmt::number(b.rate, "%.3g", b.rate) + " W of thrust error";
-          s += (n ? "; then " : "") + rows[b.from].label + " -> " + rows[b.to].label + " (" + err_text(k, f.points[b.from].error) +
-               " -> " + err_text(k, f.points[b.to].error) + " for " + secs(b.cost_s) + " s more: " + per + " per s)";
+          s += std::string(n ? "; then " : "") + "from " + rows[b.from].label + " to " + rows[b.to].label + " the error falls from " +
+               err_text(k, f.points[b.from].error) + " to " + err_text(k, f.points[b.to].error) + " for " + fmt::duration(b.cost_s) + " more";
         }
         s += ".";
       }
@@ -233,6 +233,7 @@ ojson tradeoff_json(const Tradeoff& t) {
   j["format"] = "masonry-tradeoff/1";
   j["version"] = version_text();
   j["case"] = t.case_name;
+  j["d_unit"] = t.d_unit;
   j["command"] = t.command;
   j["base"] = ojson::object();
   for (const CaseOption& o : t.base) j["base"][o.key] = to_ordered(o.value);
@@ -391,7 +392,10 @@ std::string intro_text(const Tradeoff& t) {
 const char* kDefinitions =
     "Capacity error: (capacity - reference capacity) / reference capacity, the capacity being the last stable d. "
     "Thrust error: the largest (and the rms) difference of any support reaction component, over the total weight W, "
-    "between the run and the reference on their common range of d, [0, the smaller capacity] (compare/README.md); "
+    "between the run and the reference on their common range of d, [0, the smaller capacity] (compare/README.md), "
+    "compared at the records of whichever of the two has fewer there, the other interpolated between its own records: "
+    "so neither is read half way through a step it did not resolve, where the thrust can jump (an arch's settled thrust, one "
+    "admissible state of a statically indeterminate structure, falls to the minimum thrust over the first step); "
     "n/a when that range is empty. "
     "Time: the CPU time of the solver call (thread CPU time, without file writing), the median when a setting was run several times; "
     "a busy machine does not inflate it as it does the wall time, but it still depends on the machine; the errors do not. "

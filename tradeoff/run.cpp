@@ -79,7 +79,12 @@ void fill(Row& row, const RunResult& r, const Times& t) {
 void set_errors(Row& row, const Case& c, const RunResult* ref, bool ref_ok, const RunResult& r) {
   row.capacity_err = row.thrust_max_err = row.thrust_rms_err = row.thrust_range = kNaN;
   if (!ref || !ref_ok || !row.ok()) return;
-  const Comparison k = compare_runs(c, *ref, r);
+  // Thrusts at the coarser run's records: settings step differently, and a run read between two
+  // of its records across a jump it did not resolve (the settled thrust falling to the minimum
+  // thrust over the first step) would differ from the other by the jump, not by accuracy.
+  CompareOptions co;
+  co.thrust_grid = ThrustGrid::coarser_run;
+  const Comparison k = compare_runs(c, *ref, r, co);
   row.capacity_err = k.capacity_rel_diff;
   row.thrust_max_err = k.thrust_max_diff;
   row.thrust_rms_err = k.thrust_rms_diff;

@@ -143,6 +143,7 @@ std::vector<ParetoPoint> points_of(const std::vector<Row>& rows, ErrorKind kind)
 
 struct Tradeoff {
   std::string case_name;
+  std::string d_unit = "m";            // the path parameter's SI unit (path_unit): "m" or "rad"
   std::string command;                 // how it was made (shown verbatim, escaped)
   std::vector<CaseOption> base;        // --set options: the baseline's difference from the case file
   Plan plan;

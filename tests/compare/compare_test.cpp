@@ -8,6 +8,7 @@
 #include <limits>
 #include <set>
 
+#include "common.hpp"
 #include "compare/compare.hpp"
 #include "compare/convergence.hpp"
 #include "prd/prd.hpp"
@@ -271,6 +272,28 @@ TEST(Compare, ResultsJsonReadsBackToTheSameRun) {
   EXPECT_EQ(back2.collapse_bracket->width, 8e-5);
   ASSERT_EQ(back2.collapse_bracket->trials.size(), 1u);
   EXPECT_EQ(back2.collapse_bracket->trials[0].end, "collapse");
+}
+
+// The runs kept under reports/ are xz-compressed (results.json.xz): read back through the same
+// path as results.json, to the same run; a damaged file is refused with its name.
+TEST(Compare, CompressedResultsReadBackToTheSameRun) {
+  if (test::run("command -v xz >/dev/null 2>&1") != 0) GTEST_SKIP() << "xz is not installed (scripts/install-deps.sh installs it)";
+  const test::Scratch scratch("results-xz");
+  const std::filesystem::path d = scratch.path;
+  write_results(d.string(), arch_prd(), arch());
+  ASSERT_EQ(test::run("xz -1 " + (d / "results.json").string()), 0);
+  ASSERT_FALSE(std::filesystem::exists(d / "results.json"));
+  const RunResult back = load_results((d / "results.json").string(), arch());
+  EXPECT_EQ(back.steps.size(), arch_prd().steps.size());
+  EXPECT_EQ(to_json(back, arch()).dump(), to_json(arch_prd(), arch()).dump());  // bit for bit
+  EXPECT_EQ(load_results((d / "results.json.xz").string(), arch()).steps.size(), back.steps.size());
+  test::write(d / "results.json.xz", "not xz at all");
+  try {
+    load_results((d / "results.json").string(), arch());
+    ADD_FAILURE() << "a damaged file was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("results.json.xz: not a valid xz file"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Compare, ResultsOfAnotherCaseAreRefused) {

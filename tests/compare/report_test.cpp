@@ -68,7 +68,7 @@ TEST(CompareCommand, ToleranceGateSetsTheExitCode) {
   ASSERT_NE(notes, std::string::npos) << noted;
   EXPECT_LT(checks, notes);
   EXPECT_LT(notes, caps);
-  EXPECT_NE(noted.find("The DEM takes another mechanism: nave-24/25 opens &lt;first&gt;.\n\nSecond paragraph."), std::string::npos) << noted;
+  EXPECT_NE(noted.find("The DEM takes another mechanism: nave-24/25 opens \\<first>.\n\nSecond paragraph."), std::string::npos) << noted;
   EXPECT_NE(read(d / "noted" / "report.html").find("nave-24/25 opens &lt;first&gt;."), std::string::npos);
   EXPECT_EQ(run(base + " --runs " + (d / "a").string() + " " + (d / "b").string() + " --notes " + (d / "missing.txt").string() + " --out " +
                 (d / "nonotes").string() + " 2>" + (d / "err.txt").string()),
@@ -102,6 +102,40 @@ TEST(CompareCommand, ADemRunIsHandedToPrdOnItsDeformedConfiguration) {
   EXPECT_LT(std::abs(p["kept"].get<double>() - cap), 0.25 * (rigid - cap)) << p.dump();
   const std::string md = read(d / "c" / "report.md");
   EXPECT_NE(md.find("PRD on the DEM's deformed configuration"), std::string::npos);
+  // The block's support only turns: d is its tilt, an angle, in every table and axis.
+  EXPECT_EQ(j["d_unit"], "rad");
+  EXPECT_NE(md.find("| capacity (mrad) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| step (mrad) |"), std::string::npos);
+  EXPECT_EQ(md.find("capacity (mm)"), std::string::npos);
+  EXPECT_EQ(md.find("d (mm)"), std::string::npos);
+  EXPECT_NE(read(d / "c" / "figures" / "thrust-1.svg").find("support rotation d (mrad)"), std::string::npos);
+  EXPECT_NE(read(d / "c" / "figures" / "capacity.svg").find(" mrad</text>"), std::string::npos);
+  const std::string html = read(d / "c" / "report.html");
+  EXPECT_NE(html.find("data-unit=\"mrad\""), std::string::npos);
+  // Code in the text is code in both media, never a literal backtick in the page.
+  EXPECT_NE(html.find("<code>masonry prd --from</code>"), std::string::npos);
+  EXPECT_NE(md.find("(`masonry prd --from`)"), std::string::npos);
+  EXPECT_EQ(html.find('`'), std::string::npos);
+}
+
+// A run that ended undecided says why in the report (its message), and the settings are a table
+// of their own, one row per setting, not one line of JSON running off the page.
+TEST(CompareReport, AnUndecidedRunSaysWhyAndSettingsAreATable) {
+  const Case c = load_case(kArch);
+  RunResult a = prd_run(c, PrdSettings::from_case(c)), b = a;
+  b.status = RunStatus::undecided;
+  b.collapsed = false;
+  b.message = "the hold at d = 0.27 m reached its 30 s cap with a block still moving at 0.02 m/s";
+  const Report r = make_report(c, {{"PRD", &a, "a"}, {"other", &b, "b"}});
+  const auto figs = report_figures(r);
+  const std::string md = report_markdown(r, figs), html = report_html(r, figs, 4);
+  for (const std::string* text : {&md, &html}) {
+    EXPECT_NE(text->find(b.message), std::string::npos);
+    EXPECT_NE(text->find("(undecided: last equilibrium)"), std::string::npos);
+    EXPECT_EQ(text->find("{\"step\""), std::string::npos) << "no settings JSON";
+  }
+  EXPECT_NE(md.find("| `contact_tolerance` | 1e-05 | 1e-05 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `max_steps` | 400 | 400 |"), std::string::npos) << md;
 }
 
 // A PRD-against-PRD report (1 mm and 2 mm steps) of the arch, with markup in its name and ids.
@@ -123,12 +157,13 @@ TEST(CompareReport, CaseTextIsEscapedEverywhere) {
   const Report r = markup_report(c, a, b);
   const auto figs = report_figures(r);
   const std::string md = report_markdown(r, figs), html = report_html(r, figs, 10);
-  for (const std::string* text : {&md, &html}) {
-    EXPECT_EQ(text->find("<script>document"), std::string::npos);
-    EXPECT_EQ(text->find("<img"), std::string::npos);
-    EXPECT_EQ(text->find("<b>"), std::string::npos);
-    EXPECT_EQ(text->find("<i>"), std::string::npos);
+  // The page: as entities. The Markdown: each '<' that would open a tag behind a backslash
+  // (CommonMark reads "\<" as the character), no entity a reader of the text would see.
+  for (const char* tag : {"<script>document", "<img", "<b>", "<i>"}) {
+    EXPECT_EQ(html.find(tag), std::string::npos) << tag;
+    for (size_t at = md.find(tag); at != std::string::npos; at = md.find(tag, at + 1)) EXPECT_EQ(md[at - 1], '\\') << tag;
   }
+  EXPECT_EQ(md.find("&lt;"), std::string::npos);
   for (const Figure& f : figs) {
     EXPECT_EQ(f.svg.find("<script"), std::string::npos) << f.file;
     EXPECT_EQ(f.svg.find("<img"), std::string::npos) << f.file;

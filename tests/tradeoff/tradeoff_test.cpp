@@ -3,12 +3,15 @@
 // tilting support, where the capacity for each step is known in closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
 #include "common.hpp"
+#include "compare/compare.hpp"
+#include "prd/prd.hpp"
 #include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
@@ -186,6 +189,64 @@ TEST(TradeoffPareto, HyperbolaIsItsOwnFront) {
   }
 }
 
+// ---- Thrust errors and the summary ---------------------------------------------------------
+
+// A settled state that is one admissible state of a statically indeterminate structure, and the
+// thrust falling from it to the minimum thrust over the first step (the DEM arch: 1311 N to
+// 1086 N): a run recorded every 2 mm against one recorded every 1 mm, both with that jump and
+// otherwise alike, differ by nothing where both are determined. Read half way through the first
+// 2 mm step it did not resolve, the coarse run differs by half the jump.
+TEST(TradeoffErrors, ThrustsAreComparedWhereBothRunsAreRecorded) {
+  const Case c = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/pointed-arch.json");
+  RunResult fine = prd_run(c, PrdSettings::from_case(c));
+  ASSERT_GT(fine.steps.size(), 10u);
+  const double jump = 0.1 * fine.total_weight;
+  fine.steps[0].reactions[0].force.x() += jump;
+  RunResult coarse = fine;
+  coarse.steps.clear();
+  for (const StepRecord& s : fine.steps)
+    if (s.index % 2 == 0) coarse.steps.push_back(s);
+  coarse.capacity = coarse.steps.back().d;
+  const Comparison every = compare_runs(c, fine, coarse);
+  EXPECT_NEAR(every.thrust_max_diff, 0.05, 1e-5);  // half the jump, at d = 1 mm (and the curve's own bend)
+  EXPECT_NEAR(every.thrust_max_d, 0.001, 1e-12);
+  CompareOptions o;
+  o.thrust_grid = ThrustGrid::coarser_run;
+  const Comparison coarser = compare_runs(c, fine, coarse, o);
+  EXPECT_EQ(coarser.thrust_max_diff, 0.0);
+  EXPECT_EQ(coarser.d.size(), size_t(std::count_if(coarse.steps.begin(), coarse.steps.end(), [&](const StepRecord& s) { return s.d <= coarser.d_max; })));
+  EXPECT_EQ(compare_runs(c, coarse, fine, o).thrust_max_diff, 0.0);  // whichever comes first
+}
+
+// The summary says what a step along the front buys in the reader's terms: the error before and
+// after and the extra time, not a rate in "points per second".
+TEST(TradeoffSummary, AStepAlongTheFrontReadsAsTheErrorFallingForExtraTime) {
+  Tradeoff t;
+  t.case_name = "arch";
+  t.methods = {"dem"};
+  const auto row = [](const std::string& label, bool reference, double time, double cap_err) {
+    Row r;
+    r.method = "dem";
+    r.label = label;
+    r.parameter = reference ? "reference" : "motion.step";
+    r.reference = reference;
+    r.status = RunStatus::collapse;
+    r.time_s = time;
+    r.capacity = 0.276;
+    r.capacity_err = cap_err;
+    r.thrust_max_err = r.thrust_rms_err = 0.0;
+    return r;
+  };
+  t.rows = {row("reference", true, 27.5, 0.0), row("fast", false, 0.0038, 0.0072), row("slower", false, 0.0076, 0.0)};
+  std::string all;
+  for (const std::string& s : summary_lines(t)) all += s + "\n";
+  EXPECT_NE(all.find("from fast to slower the error falls from 0.72% to 0% for 3.8 ms more"), std::string::npos) << all;
+  EXPECT_EQ(all.find("points of"), std::string::npos) << all;
+  EXPECT_EQ(all.find("per s)"), std::string::npos) << all;
+  EXPECT_EQ(all.find("->"), std::string::npos) << all;
+  EXPECT_NE(all.find("the fastest setting within 1% in capacity and 0.0100 W in thrust of the reference is fast (0.0038 s"), std::string::npos) << all;
+}
+
 // ---- End to end ------------------------------------------------------------------------------
 
 const char* kTiltPlan = R"({
@@ -332,6 +393,27 @@ TEST(TradeoffCommand, WritesEveryFileWithoutNaN) {
   size_t reused = 0;
   for (size_t at = log.find("reused from"); at != std::string::npos; at = log.find("reused from", at + 1)) ++reused;
   EXPECT_EQ(reused, 5u) << log;
+}
+
+// A finished run kept compressed (results.json.xz, as the runs under reports/ are) serves as a
+// method's reference.
+TEST(TradeoffCommand, ACompressedRunServesAsTheReference) {
+  if (run("command -v xz >/dev/null 2>&1") != 0) GTEST_SKIP() << "xz is not installed (scripts/install-deps.sh installs it)";
+  const test::Scratch scratch("tradeoff-xz");
+  const fs::path d = scratch.path;
+  write(d / "tilt.json", kTiltCase);
+  write(d / "plan.json", kTiltPlan);
+  const std::string ref = (d / "ref").string();
+  ASSERT_EQ(run(std::string(MASONRY_EXE) + " prd " + (d / "tilt.json").string() + " --out " + ref + " 2>/dev/null"), 0);
+  ASSERT_EQ(run("xz -1 " + ref + "/results.json"), 0);
+  const std::string out = (d / "out").string();
+  ASSERT_EQ(run(std::string(MASONRY_EXE) + " tradeoff " + (d / "tilt.json").string() + " --out " + out + " --methods prd --plan " +
+                (d / "plan.json").string() + " --repeat 1 --reference-prd " + ref + " --quiet 2>/dev/null"),
+            0);
+  const auto j = nlohmann::json::parse(read(fs::path(out) / "tradeoff.json"));
+  EXPECT_EQ(j["rows"][0]["role"], "reference");
+  EXPECT_EQ(j["rows"][0]["source"], ref);
+  EXPECT_NEAR(j["rows"][0]["capacity"].get<double>(), grid_capacity(0.004), 1e-9);
 }
 
 TEST(TradeoffCommand, BadOptionsGetOneLine) {

@@ -1,0 +1,241 @@
+// Mechanism agreement (compare/mechanism.cpp), on cases whose answer is known before any DEM
+// comparison of the cathedral is read, which chose its limit in reports/paper-tolerances.json
+// (0.9; compare/README.md, "Mechanism agreement"). Measured 2026-11-26:
+//  - the same mechanism: PRD against itself at half the step, 0.9998-1.0000 on the three standard
+//    cases (the settlement cathedral's nave hinge moves one joint, nave-17/18 to 16/17); the
+//    mirror image on the symmetric arch, 1.0000; the tilting block's two rungs of the friction
+//    ladder on the toppling side (30 and 35 degrees), 0.994-1.000, elastic intervals included;
+//  - another mechanism: PRD held closed at the settlement cathedral's springing (branch X of
+//    dem/README.md, the right buttress's base lifting), 0.12-0.46; the ladder's sliding rung
+//    (20 degrees) against the toppling one at collapse, 0.03.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common.hpp"
+#include "compare/compare.hpp"
+#include "dem/dem.hpp"
+#include "prd/prd.hpp"
+
+namespace masonry {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSource = MASONRY_SOURCE_DIR;
+
+Case load(const std::string& name) { return load_case(kSource + "/cases/" + name + ".json"); }
+RunResult prd(const Case& c) { return prd_run(c, PrdSettings::from_case(c)); }
+RunResult dem(const Case& c) { return dem_run(c, DemSettings::from_case(c)); }
+
+// The limit the standard comparisons are checked against.
+double paper_limit() {
+  const Tolerances t = load_tolerances(kSource + "/reports/paper-tolerances.json");
+  EXPECT_TRUE(t.mechanism.has_value());
+  return t.mechanism.value_or(NAN);
+}
+
+double least(const Comparison& k) {
+  double x = 1.0;
+  for (const MotionCheck& m : k.motion)
+    if (std::isfinite(m.agreement)) x = std::min(x, m.agreement);
+  return x;
+}
+
+Case half_step(const Case& c) {
+  return with_option(with_option(c, "motion.step", c.motion.step / 2), "motion.max_steps", 2 * c.motion.max_steps);
+}
+
+// The same mechanism at another resolution of the path: the step halved.
+TEST(Mechanism, PrdAgainstItselfAtHalfTheStepAgrees) {
+  const double limit = paper_limit();
+  for (const char* name : {"pointed-arch", "cathedral-settlement", "cathedral-settlement-rotation"}) {
+    SCOPED_TRACE(name);
+    const Case c = load(name);
+    const Comparison k = compare_runs(c, prd(c), prd(half_step(c)));
+    ASSERT_EQ(k.motion.size(), 6u);  // five intervals of the common range and the collapse
+    EXPECT_TRUE(k.motion.back().collapse);
+    for (const MotionCheck& m : k.motion) {
+      EXPECT_TRUE(m.a_moves && m.b_moves);
+      EXPECT_GT(m.agreement, 0.99) << interval_text(m, k.d_unit, "a", "b");
+    }
+    Tolerances t;
+    t.mechanism = limit;
+    EXPECT_TRUE(check_tolerances(k, t).empty());
+  }
+}
+
+// The settlement cathedral's PRD with its right springing's corner held closed takes another
+// mechanism, known before (dem/README.md, "The branch X"): the right buttress's base lifts
+// (support-4/R-buttress-00 opens at B) where PRD's right pier rocks on its base and the nave
+// turns at the springing.
+TEST(Mechanism, PrdHeldOnAnotherMechanismDisagrees) {
+  const Case c = load("cathedral-settlement");
+  const Case held = with_option(c, "prd.hold_closed", nlohmann::json::array({"nave-41/R-pier-30:A"}));
+  const Comparison k = compare_runs(c, prd(c), prd(held), {}, "PRD", "PRD held");
+  ASSERT_FALSE(k.motion.empty());
+  EXPECT_LT(least(k), 0.5);
+  for (const MotionCheck& m : k.motion) EXPECT_LT(m.agreement, paper_limit()) << interval_text(m, k.d_unit, "a", "b");
+  // Another mechanism is not a shifted hinge: no joint's motion moved along its ring by up to
+  // three joints makes up the difference.
+  CompareOptions o;
+  o.ring_shift = kMaxHingeShift;
+  EXPECT_LT(least(compare_runs(c, prd(c), prd(held), o)), 0.5);
+  // Where they differ: the buttress's base, which only the held run lifts.
+  const MotionCheck& first = k.motion.front();
+  ASSERT_FALSE(first.differ.empty());
+  bool buttress = false;
+  for (const MotionDiff& x : first.differ)
+    if (x.label == "support-4/R-buttress-00") {
+      buttress = true;
+      EXPECT_NEAR(x.a.open_b, 0.0, 1e-9);
+      EXPECT_GT(x.b.open_b, 1e-3);  // lifts by millimetres
+    }
+  EXPECT_TRUE(buttress);
+  Tolerances t;
+  t.mechanism = paper_limit();
+  const std::vector<std::string> v = check_tolerances(k, t);
+  ASSERT_EQ(v.size(), k.motion.size() - 1);  // every interval of the common range
+  EXPECT_EQ(v.front().rfind("mechanism: from d = 0 to ", 0), 0u) << v.front();
+  EXPECT_NE(v.front().find("support-4/R-buttress-00"), std::string::npos) << v.front();
+}
+
+// PRD with the haunch hinge's open corner held closed (nave-07/nave-08:B) turns about the next
+// joint along the nave instead, at the same capacity and with its other hinges where they were:
+// the same mechanism with a hinge one voussoir along, which the hinge check accepts within one
+// joint (compare/README.md, "Hinges one joint apart"). Read joint by joint the motions differ
+// where that hinge (26 mm open) sits; moved along the ring by one joint they agree.
+TEST(Mechanism, AHingeOneJointAlongARingIsTheSameMechanismWithinOneJoint) {
+  const Case c = load("cathedral-settlement");
+  const RunResult a = prd(c), b = prd(with_option(c, "prd.hold_closed", nlohmann::json::array({"nave-07/nave-08:B"})));
+  ASSERT_EQ(b.capacity, a.capacity);
+  const Comparison strict = compare_runs(c, a, b);
+  for (const HingeCheck& h : strict.hinges) EXPECT_TRUE(h.ok(1)) << "d = " << h.d;
+  CompareOptions o;
+  o.ring_shift = 1;
+  const Comparison along = compare_runs(c, a, b, o);
+  ASSERT_EQ(along.motion.size(), strict.motion.size());
+  EXPECT_LT(strict.motion[0].agreement, 0.95);
+  for (size_t n = 0; n < along.motion.size(); ++n) {
+    EXPECT_EQ(along.motion[n].same_joints, strict.motion[n].agreement);
+    EXPECT_GE(along.motion[n].agreement, strict.motion[n].agreement);
+    EXPECT_GT(along.motion[n].agreement, paper_limit());
+  }
+  EXPECT_GT(along.motion[0].agreement, 0.999);
+  EXPECT_GT(along.motion[1].agreement, 0.999);
+}
+
+// The arch pushed outwards on the left instead of the right: the mirror image of the same
+// mechanism, which counts as agreement on a symmetric structure (the paper's Remark 3).
+TEST(Mechanism, TheMirrorImageOnASymmetricArchAgrees) {
+  const Case c = load("pointed-arch");
+  Case mirrored = c;
+  const Bounds box = scene_bounds(c);
+  for (SupportMotion& s : mirrored.motion.supports) {
+    s.block = c.block_index("left");
+    s.translation.x() = -s.translation.x();
+    s.about.x() = box.lo.x() + box.hi.x() - s.about.x();
+  }
+  const RunResult a = prd(c), b = prd(mirrored);
+  const Comparison k = compare_runs(c, a, b);
+  ASSERT_TRUE(k.symmetric);
+  EXPECT_EQ(k.capacity_rel_diff, 0.0);
+  ASSERT_EQ(k.motion.size(), 6u);
+  for (const MotionCheck& m : k.motion) {
+    EXPECT_TRUE(m.mirror);
+    EXPECT_GT(m.agreement, 0.999);
+    EXPECT_TRUE(m.differ.empty());  // the same motion to round-off
+  }
+  // Read directly, without the mirror, they move at other joints.
+  Case lopsided = c;
+  lopsided.blocks[c.block_index("left")].vertices[0].x() -= 0.01;  // no longer its own mirror image
+  const Comparison direct = compare_runs(lopsided, a, b);
+  ASSERT_FALSE(direct.symmetric);
+  EXPECT_LT(least(direct), 0.5);
+}
+
+// The tilting block's friction ladder (cases/tilting-block-sweep.json): below atan(b/h) = 26.57
+// degrees it slides at the friction angle, above it topples at 26.57 degrees. Two rungs on the
+// toppling side move the same way throughout; a sliding rung against a toppling one collapses
+// by another mechanism, while their elastic motion before is alike.
+TEST(Mechanism, TheFrictionLaddersSlidingAndTopplingRungsDisagreeAtCollapse) {
+  const Case c = load("tilting-block");
+  const RunResult slides = dem(with_option(c, "dem.friction_angle", 20.0)), topples = dem(with_option(c, "dem.friction_angle", 35.0)),
+                  topples_too = dem(with_option(c, "dem.friction_angle", 30.0));
+  ASSERT_EQ(slides.status, RunStatus::collapse);
+  ASSERT_EQ(topples.status, RunStatus::collapse);
+  const Comparison same = compare_runs(c, topples_too, topples);
+  EXPECT_EQ(same.d_unit, "rad");
+  ASSERT_EQ(same.motion.size(), 6u);
+  for (const MotionCheck& m : same.motion) EXPECT_GT(m.agreement, 0.99) << interval_text(m, same.d_unit, "a", "b");
+  const Comparison other = compare_runs(c, slides, topples);
+  ASSERT_EQ(other.motion.size(), 6u);
+  const MotionCheck& collapse = other.motion.back();
+  ASSERT_TRUE(collapse.collapse);
+  EXPECT_LT(collapse.agreement, 0.1);
+  ASSERT_FALSE(collapse.differ.empty());
+  EXPECT_GT(std::abs(collapse.differ[0].a.slip), 5e-3);      // the sliding rung slides
+  EXPECT_GT(std::abs(collapse.differ[0].b.rotation), 0.05);  // the toppling one turns
+  for (size_t n = 0; n + 1 < other.motion.size(); ++n) EXPECT_GT(other.motion[n].agreement, paper_limit());
+  // So the check over the common range passes, and the one at collapse fails.
+  Tolerances t;
+  t.mechanism = paper_limit();
+  EXPECT_TRUE(check_tolerances(other, t).empty());
+  t.collapse_mechanism = paper_limit();
+  const std::vector<std::string> v = check_tolerances(other, t);
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].rfind("collapse_mechanism: at collapse", 0), 0u) << v[0];
+  EXPECT_NE(v[0].find("ground/block"), std::string::npos) << v[0];
+  EXPECT_TRUE(check_tolerances(same, t).empty());
+  // PRD's block is carried rigidly by the tilting ground until it topples: no joint moves, so its
+  // agreement with any run is not determined (null), and the check does not fail on it.
+  const Comparison rigid = compare_runs(c, prd(c), topples);
+  for (const MotionCheck& m : rigid.motion) {
+    EXPECT_FALSE(m.a_moves);
+    EXPECT_TRUE(std::isnan(m.agreement));
+  }
+  t.collapse_mechanism.reset();
+  EXPECT_TRUE(check_tolerances(rigid, t).empty());
+  EXPECT_TRUE(to_json(rigid)["mechanism_agreement"][0]["agreement"].is_null());
+}
+
+// The command: PRD against PRD held on another mechanism exits 1 and names the mechanism check;
+// PRD against itself at half the step passes.
+TEST(MechanismCommand, AnotherMechanismFailsTheCheckAndHalfTheStepPasses) {
+  const test::Scratch scratch("mechanism-cli");
+  const fs::path d = scratch.path;
+  const std::string exe = MASONRY_EXE, cs = kSource + "/cases/cathedral-settlement.json";
+  ASSERT_EQ(test::run(exe + " prd " + cs + " --out " + (d / "prd").string() + " 2>/dev/null"), 0);
+  ASSERT_EQ(test::run(exe + " prd " + cs + " --hold nave-41/R-pier-30:A --out " + (d / "held").string() + " 2>/dev/null"), 0);
+  ASSERT_EQ(test::run(exe + " prd " + cs + " --step 0.005 --max-steps 600 --out " + (d / "half").string() + " 2>/dev/null"), 0);
+  const std::string base = exe + " compare " + cs + " --quiet --tolerances " + kSource + "/reports/paper-tolerances.json --runs " + (d / "prd").string();
+  EXPECT_EQ(test::run(base + " " + (d / "held").string() + " --out " + (d / "c-held").string() + " 2>" + (d / "err.txt").string()), 1);
+  const std::string err = test::read(d / "err.txt");
+  EXPECT_NE(err.find("limit exceeded: mechanism: from d = 0 to "), std::string::npos) << err;
+  EXPECT_EQ(err.find("collapse"), std::string::npos) << "the paper's limits do not check the collapse: " << err;
+  const auto j = nlohmann::json::parse(test::read(d / "c-held" / "comparison.json"));
+  const auto& ma = j["comparisons"][0]["mechanism_agreement"];
+  ASSERT_EQ(ma.size(), 6u);
+  EXPECT_LT(ma[0]["agreement"].get<double>(), 0.5);
+  EXPECT_FALSE(j["comparisons"][0]["tolerances"]["pass"].get<bool>());
+  EXPECT_NE(test::read(d / "c-held" / "report.md").find("### Mechanism agreement"), std::string::npos);
+  EXPECT_EQ(test::run(base + " " + (d / "half").string() + " --out " + (d / "c-half").string() + " 2>/dev/null"), 0);
+  const auto h = nlohmann::json::parse(test::read(d / "c-half" / "comparison.json"));
+  for (const auto& m : h["comparisons"][0]["mechanism_agreement"]) EXPECT_GT(m["agreement"].get<double>(), 0.99);
+}
+
+TEST(Mechanism, TheLimitIsANumberFromZeroToOne) {
+  EXPECT_EQ(parse_tolerances(R"({"mechanism": 0.9})", "t.json").mechanism, 0.9);
+  EXPECT_EQ(parse_tolerances(R"({"collapse_mechanism": 0.5})", "t.json").collapse_mechanism, 0.5);
+  for (const char* bad : {R"({"mechanism": 1.5})", R"({"mechanism": -0.1})", R"({"mechanism": "high"})", R"({"mechanism": true})"}) {
+    try {
+      parse_tolerances(bad, "t.json");
+      ADD_FAILURE() << bad;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("t.json: \"mechanism\""), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace masonry
