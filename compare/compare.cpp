@@ -417,11 +417,12 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
     return false;
   });
   k.hinges_skipped = missing(a, b, k, "joints", [](const RunResult& r) { return !r.joints.empty(); });
-  // The mechanism agreement moves the joints' corners with the blocks' poses.
-  k.mechanism_skipped = missing(a, b, k, "poses", [&](const RunResult& r) {
+  // The mechanism agreement moves the joints' corners with the blocks' poses and weights each
+  // joint by the force it carries: without forces every weight is 0 and no agreement exists.
+  k.mechanism_skipped = missing(a, b, k, "joints, poses and forces at every record", [&](const RunResult& r) {
     if (r.joints.empty()) return false;
     for (const StepRecord* s : stable_records(r))
-      if (s->poses.size() != c.blocks.size()) return false;
+      if (s->poses.size() != c.blocks.size() || s->forces.empty()) return false;
     return true;
   });
   std::vector<std::string> supports;
@@ -602,7 +603,7 @@ ojson to_json(const Comparison& k) {
   }
   j["mechanism_agreement"] = ma;
   if (!k.mechanism_skipped.empty()) j["mechanism_note"] = k.mechanism_skipped;
-  j["mechanism_joints_apart"] = k.ring_shift;
+  if (k.mechanism_skipped.empty()) j["mechanism_joints_apart"] = k.ring_shift;
   j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }

@@ -41,7 +41,8 @@ struct Tolerances {
 };
 // The largest hinge_shift looked for (HingeCheck::shift is -1 beyond it).
 inline constexpr int kMaxHingeShift = 3;
-// Parses {"capacity": 0.05, "capacity_abs": 0.002, "thrust": 0.10, "hinges": true, "hinge_shift": 1}; unknown keys and
+// Parses {"capacity": 0.05, "capacity_abs": 0.002, "thrust": 0.10, "mechanism": 0.9, "collapse_mechanism": 0.5,
+// "hinges": true, "hinge_shift": 1}; unknown keys and
 // wrong types throw std::runtime_error naming the file and the key.
 Tolerances parse_tolerances(const std::string& text, const std::string& source);
 Tolerances load_tolerances(const std::string& path);
@@ -157,7 +158,8 @@ struct Comparison {
   double time_ratio = 0.0;         // time_b / time_a (NaN when time_a is 0)
   // What a run's results do not give is not compared (a results file need give only its
   // capacity and steps): the reason, or empty when compared. Thrust curves need every run's
-  // reactions, hinges its joints and open corners.
+  // reactions, hinges its joints and open corners, the mechanism agreement its joints, poses
+  // and forces at every record.
   std::string thrust_skipped, hinges_skipped, mechanism_skipped;
 };
 

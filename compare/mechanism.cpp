@@ -295,7 +295,8 @@ std::optional<StepRecord> collapse_state(const RunResult& r) {
   for (auto it = r.steps.rbegin(); it != r.steps.rend(); ++it)
     if (it->d > r.capacity + eps && !is_equilibrium(r, *it)) return *it;
   // PRD writes the configuration it found unbounded: where the last step's mechanism took it.
-  if (r.collapse && !r.steps.empty() && r.collapse->poses.size() == r.steps.front().poses.size()) {
+  if (r.collapse && !r.steps.empty() && !r.collapse->poses.empty() && std::isfinite(r.collapse->d) &&
+      r.collapse->poses.size() == r.steps.front().poses.size()) {
     StepRecord s;
     s.index = -1;
     s.d = r.collapse->d;

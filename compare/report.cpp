@@ -369,6 +369,11 @@ std::vector<Item> settled_cracks(const Report& r) {
 void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
   const std::string unit = d_unit(r);
   d.heading(3, {"Mechanism agreement"});
+  if (!cmp.mechanism_skipped.empty()) {
+    d.paragraph({"Mechanism agreement " + cmp.mechanism_skipped + " (the check moves the joints' corners with the blocks and weights "
+                 "each joint by the force it carries)."});
+    return;
+  }
   d.paragraph({"Whether the two runs move the same way over each interval of d: every joint corner's relative displacement (the "
                "two blocks' copies of the corner, so the supports' imposed motion counts for nothing), weighted by the normal force "
                "the joint carries over W, and the cosine of the two runs' vectors: 1 for the same mechanism at any amplitude, 0 for "

@@ -323,10 +323,12 @@ void close(Run& u, const Failure& f) {
         << " m past the last equilibrium";
     u.r.limit_point = true;
   } else if (!u.r.collapsed) {
+    // The bracket stops narrowing at its tolerance, or where a trial could not be decided.
+    const double tolerance = u.bracket > 0 ? u.bracket : u.s.step;
     msg << "the hold at d = " << f.d << " m neither settled nor ran away within the hold cap (" << u.s.hold_time << " s"
-        << (f.attempt.hold.end == HoldEnd::creep ? "): it creeps without slowing down, but the collapse bracket ["
-                                                  : ") and three more, its motion still dying out; the collapse bracket [")
-        << u.d_eq << ", " << f.d << "] m is wider than its tolerance: the capacity " << u.d_eq
+        << (f.attempt.hold.end == HoldEnd::creep ? "): it creeps without slowing down" : ") and three more: its motion still dying out")
+        << "; the collapse bracket [" << u.d_eq << ", " << f.d << "] m"
+        << (width > tolerance * (1 + 1e-9) ? " is wider than its tolerance" : "'s upper end stayed undecided") << ": the capacity " << u.d_eq
         << " m is the last equilibrium, not a located collapse";
   }
   u.r.message = msg.str();

@@ -141,7 +141,7 @@ ojson to_json(const RunResult& r, const Case& c) {
     for (const StepRecord& s : r.steps)
       if (is_equilibrium(r, s) && s.d > capacity) {
         capacity = s.d;
-        ++stable_steps;
+        stable_steps = s.index;  // stable_steps is the last equilibrium record's index
       }
   j["capacity"] = json_number(capacity);
   j["stable_steps"] = stable_steps;

@@ -138,6 +138,28 @@ TEST(Compare, WhatARunsResultsDoNotGiveIsNotComparedAndSaysSo) {
   EXPECT_FALSE(j["hinges"]["compared"].get<bool>());
   EXPECT_TRUE(compare_runs(arch(), a, a).thrust_skipped.empty());
   EXPECT_TRUE(to_json(compare_runs(arch(), a, a))["thrust"]["compared"].get<bool>());
+  // The mechanism agreement moves corners with the poses and weights joints by their forces: a
+  // run with joints and poses but no forces gives no agreement, and says so instead of passing.
+  EXPECT_EQ(k.mechanism_skipped, "not compared: my-lp gives no joints, poses and forces at every record");
+  EXPECT_TRUE(k.motion.empty());
+  Tolerances mech;
+  mech.mechanism = 0.9;
+  mech.collapse_mechanism = 0.9;
+  EXPECT_TRUE(check_tolerances(k, mech).empty());
+  EXPECT_EQ(j["mechanism_note"], k.mechanism_skipped);
+  EXPECT_FALSE(j.contains("mechanism_joints_apart"));
+  RunResult no_forces = a;
+  for (StepRecord& s : no_forces.steps) s.forces.clear();
+  no_forces.method = "my-lp";
+  const Comparison f = compare_runs(arch(), a, no_forces);
+  EXPECT_FALSE(f.mechanism_skipped.empty());
+  EXPECT_TRUE(f.hinges_skipped.empty());
+  const Comparison same = compare_runs(arch(), a, a);
+  EXPECT_TRUE(same.mechanism_skipped.empty());
+  EXPECT_FALSE(same.motion.empty());
+  Tolerances strict;
+  strict.mechanism = 0.999;
+  EXPECT_TRUE(check_tolerances(same, strict).empty());  // a run agrees with itself
 }
 
 TEST(Compare, PointedArchIsItsOwnMirrorImage) {

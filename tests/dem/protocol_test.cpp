@@ -59,12 +59,15 @@ TEST(DemHold, RunawayIsCollapse) {
 // With damping 0.9999 a block on soft joints creeps down onto its 4 mm of elastic overlap, taking
 // many of its natural periods: the hold waits (the kinetic energy stays far below what a runaway
 // reaches, the threshold dem_run sets for a 1 cm increment) and ends in equilibrium; with a cap
-// too short for the creep, it is undecided, never a collapse.
+// too short for the creep, it is undecided, never a collapse. Local damping takes its share of
+// the unbalanced force every cycle, so how long the creep lasts in model time goes with the
+// cycles per second: the time step is pinned at the factor these durations were set with.
 TEST(DemHold, CreepTowardsEquilibriumIsNotCollapse) {
   Case c = incline_case(0.0, 35);
   c.dem.kn = 1e6;
   c.dem.ks = 4e5;
   c.dem.damping = 0.9999;
+  c.dem.timestep_factor = 0.8;
   DemSettings s = DemSettings::from_case(c);
   const double W = 2000 * 0.2 * 0.1 * c.gravity, mass = W / c.gravity;
   const double overlap = W / (1e6 * 0.2);                          // W / (kn A)
@@ -102,12 +105,13 @@ TEST(DemHold, ACollapseSlowerThanTheCapIsACollapse) {
 }
 
 // A run whose first settling cannot finish within the cap (and its three extensions) says so:
-// undecided, no capacity.
+// undecided, no capacity. (The time step pinned as above.)
 TEST(DemHold, UndecidedInitialStateIsNoCapacity) {
   Case c = incline_case(0.0, 35);
   c.dem.kn = 1e6;
   c.dem.ks = 4e5;
   c.dem.damping = 0.9999;
+  c.dem.timestep_factor = 0.8;
   c.dem.hold_time = 0.2;
   const RunResult r = dem_run(c, DemSettings::from_case(c));
   EXPECT_EQ(r.status, RunStatus::undecided);

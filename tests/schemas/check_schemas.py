@@ -15,6 +15,7 @@ per file that does not validate.
 import argparse
 import glob
 import json
+import lzma
 import os
 import re
 import shutil
@@ -76,6 +77,10 @@ def main():
     # Checked in.
     for path in sorted(glob.glob(os.path.join(src, "reports", "**", "results.json"), recursive=True)):
         check("results", load(path), path)
+    # The runs kept compressed (reports/README.md): the same format.
+    for path in sorted(glob.glob(os.path.join(src, "reports", "**", "results.json.xz"), recursive=True)):
+        with lzma.open(path, "rt") as f:
+            check("results", json.load(f), path)
     for path in sorted(glob.glob(os.path.join(src, "reports", "**", "comparison.json"), recursive=True)):
         check("comparison", load(path), path)
     for path in sorted(glob.glob(os.path.join(src, "cases", "**", "*.json"), recursive=True)):
