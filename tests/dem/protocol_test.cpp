@@ -90,9 +90,10 @@ TEST(DemHold, CreepTowardsEquilibriumIsNotCollapse) {
 
 // A collapse slower than the cap is a collapse: a block on a slope one degree steeper than its
 // friction angle, heavily damped, slides at 0.04 m/s^2 (a fifth of g (sin 36 - cos 36 tan 35));
-// with a cap of 1 s it has gone 2 cm, less than the collapse drift (5 cm), and the kinetic-energy
-// rule is off, but it went farther in the second half-second than in the first: collapse, not
-// undecided. (The creeping block above never goes a tenth of the collapse drift.)
+// with a cap of 1 s it goes 2 cm, less than the collapse drift (5 cm), and the kinetic-energy
+// rule is off, but it goes farther in the second half of the cap, or of a window of it (the
+// early looks), than in the first: collapse, not undecided, within the cap. (The creeping block
+// above never goes a tenth of the collapse drift.)
 TEST(DemHold, ACollapseSlowerThanTheCapIsACollapse) {
   const Case c = incline_case(36 * kDeg, 35);
   DemSettings s = DemSettings::from_case(c);
@@ -101,7 +102,23 @@ TEST(DemHold, ACollapseSlowerThanTheCapIsACollapse) {
   const dem::HoldOutcome h = dem::hold(m, c, s, limits(0.05, INFINITY));
   EXPECT_EQ(h.end, dem::HoldEnd::collapse) << dem::hold_end_name(h.end) << ", drift " << h.drift << " m";
   EXPECT_LT(h.drift, 0.05);
-  EXPECT_NEAR(h.time, s.hold_time, 1e-3);
+  EXPECT_LE(h.time, s.hold_time + 1e-3);
+}
+
+// The cap's rule read early: the same slide with a cap of 8 s and a collapse drift of 0.5 m
+// (its tenth, 5 cm, is passed at t = sqrt(0.05 / 0.02) = 1.6 s on x = a t^2 / 2, a = 0.04 m/s^2)
+// is called a collapse at the first window of j/16 of the cap (j >= 2) that ends past 1.6 s and
+// shows the second half's travel at least the first's: at 2 s, not at the cap.
+TEST(DemHold, AFailureSpeedingUpIsCalledBeforeTheCap) {
+  const Case c = incline_case(36 * kDeg, 35);
+  DemSettings s = DemSettings::from_case(c);
+  s.hold_time = 8.0;
+  DemModel m(c, s);
+  const dem::HoldOutcome h = dem::hold(m, c, s, limits(0.5, INFINITY));
+  EXPECT_EQ(h.end, dem::HoldEnd::collapse) << dem::hold_end_name(h.end) << ", drift " << h.drift << " m";
+  EXPECT_NEAR(h.time, 2.0, 0.01);
+  EXPECT_GT(h.drift, 0.05);
+  EXPECT_LT(h.drift, 0.5);
 }
 
 // A run whose first settling cannot finish within the cap (and its three extensions) says so:
