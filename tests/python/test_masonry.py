@@ -122,6 +122,14 @@ class TiltingBlock(unittest.TestCase):
                 self.assertEqual(len(json.load(f)["steps"]), 4)
         self.assertEqual(seen[-1], 4)
 
+    def test_an_error_in_progress_stops_the_run_and_is_raised(self):
+        def progress(d, steps):
+            if steps == 3:
+                raise ValueError("enough")
+
+        with self.assertRaisesRegex(ValueError, "enough"):
+            masonry.run_prd(self.case, progress=progress)
+
     def test_compare(self):
         same = masonry.compare(self.prd, masonry.run_prd(self.case), tolerances={"capacity": 1e-12})
         self.assertTrue(same["pass"])
