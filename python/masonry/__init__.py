@@ -35,8 +35,6 @@ out=DIR they are on disk too.
 import json as _json
 import os as _os
 
-import numpy as _np
-
 from . import _masonry
 from ._masonry import MasonryError, Result
 
@@ -55,10 +53,9 @@ class Interrupted(KeyboardInterrupt):
 
 
 def _plain(value):
-    if isinstance(value, _np.ndarray):
+    # numpy arrays and scalars (numpy itself is imported only where an array is made)
+    if hasattr(value, "tolist"):
         return value.tolist()
-    if isinstance(value, _np.generic):
-        return value.item()
     raise TypeError(f"masonry: {type(value).__name__} is not a JSON value")
 
 
