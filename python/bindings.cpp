@@ -52,8 +52,8 @@ std::string number_text(double x) {
   return o.str();
 }
 
-// JSON text <-> Python objects through Python's own json module: a document crosses as text, as
-// it crosses between the command line's files.
+// A JSON document as Python objects, through Python's own json module: it crosses as text, as it
+// crosses between the command line's files.
 py::object from_json(const nlohmann::ordered_json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
 // What a step's callback does, with the GIL held again: the progress callable, then Python's
