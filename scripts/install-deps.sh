@@ -17,6 +17,8 @@ packages=(
   chromium                         # compare tests: report.html in a headless browser
   jq                               # the PRD report scripts under reports/
   python3-jsonschema               # the schema test: every file masonry writes against schemas/ (JSON Schema 2020-12)
+  python3-dev pybind11-dev python3-pybind11  # the Python module (import masonry, python/): headers and bindings
+  python3-numpy                    # the Python module's arrays (results' d, reactions, poses; blocks' vertices)
 )
 missing=()
 for p in "${packages[@]}"; do

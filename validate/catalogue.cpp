@@ -323,6 +323,20 @@ Case generated(const std::string& name, const nlohmann::json& params, const Wher
 
 }  // namespace
 
+std::vector<const Benchmark*> chosen_benchmarks(const Catalogue& cat, bool quick, const std::vector<std::string>& only) {
+  std::set<std::string> wanted(only.begin(), only.end());
+  for (const std::string& n : wanted) {
+    bool known = false;
+    for (const Benchmark& b : cat.benchmarks) known = known || b.name == n;
+    if (!known) throw CaseError(cat.source + ": no benchmark named '" + n + "' (masonry validate --list)");
+  }
+  std::vector<const Benchmark*> out;
+  for (const Benchmark& b : cat.benchmarks)
+    if ((!quick || b.quick) && (wanted.empty() || wanted.count(b.name))) out.push_back(&b);
+  if (out.empty()) throw CaseError(cat.source + ": no benchmark left to run (--quick and --only exclude them all)");
+  return out;
+}
+
 Case benchmark_case(const Catalogue& cat, const Benchmark& b, Method m, std::optional<double> value) {
   const Where w{cat.source, b.name};
   const CaseSource& s = b.case_source;

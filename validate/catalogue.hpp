@@ -100,6 +100,10 @@ Catalogue parse_catalogue(const std::string& text, const std::string& source, co
 Catalogue load_catalogue(const std::string& path);
 // validate/catalogue.json, compiled in.
 Catalogue builtin_catalogue();
+// The benchmarks `masonry validate --quick --only NAME...` runs, in catalogue order: the quick
+// ones where `quick`, those named in `only` where it names any. Throws CaseError for a name the
+// catalogue does not have, or when nothing is left to run.
+std::vector<const Benchmark*> chosen_benchmarks(const Catalogue& cat, bool quick, const std::vector<std::string>& only);
 
 // The benchmark's structure for one method: the case, the catalogue's options, the method's
 // options, and (for a threshold search) the searched parameter at `value`.

@@ -10,7 +10,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <set>
 
 #include "app/command.hpp"
 #include "model/results.hpp"
@@ -39,21 +38,6 @@ std::string solver_workdir() {
       throw CaseError("--solver: the temporary directory " + pattern + " has characters a shell command would need quoted (set TMPDIR)");
   if (!mkdtemp(pattern.data())) throw CaseError("--solver: cannot make a working directory under " + fs::temp_directory_path().string());
   return pattern;
-}
-
-// The benchmarks chosen by --quick and --only, in catalogue order; an unknown name is bad input.
-std::vector<const Benchmark*> chosen(const Catalogue& cat, const Opts& o) {
-  std::set<std::string> wanted(o.only.begin(), o.only.end());
-  for (const std::string& n : wanted) {
-    bool known = false;
-    for (const Benchmark& b : cat.benchmarks) known = known || b.name == n;
-    if (!known) throw CaseError(cat.source + ": no benchmark named '" + n + "' (masonry validate --list)");
-  }
-  std::vector<const Benchmark*> out;
-  for (const Benchmark& b : cat.benchmarks)
-    if ((!o.quick || b.quick) && (wanted.empty() || wanted.count(b.name))) out.push_back(&b);
-  if (out.empty()) throw CaseError(cat.source + ": no benchmark left to run (--quick and --only exclude them all)");
-  return out;
 }
 
 std::string command_line(const Opts& o) {
@@ -95,7 +79,7 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                        std::cout << b.name << (b.quick ? " (quick)" : "") << ": " << b.title << "\n";
                      return 0;
                    }
-                   const std::vector<const Benchmark*> todo = chosen(cat, *o);
+                   const std::vector<const Benchmark*> todo = chosen_benchmarks(cat, o->quick, o->only);
                    std::optional<OutsideSolver> solver;
                    if (!o->solver.empty()) {
                      solver.emplace();

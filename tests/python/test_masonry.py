@@ -1,0 +1,254 @@
+"""The Python module (python/, README "From Python"), run by ctest with PYTHONPATH at the build's
+python/ directory, MASONRY_EXE the command line and MASONRY_SOURCE_DIR the repository. Expected
+values come from the case files (closed forms), the command line's own output (the module must
+give what it gives, bit for bit) and equilibrium; PRD runs only, and two DEM steps."""
+
+import json
+import math
+import os
+import signal
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import masonry
+
+SOURCE = os.environ.get("MASONRY_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+EXE = os.environ.get("MASONRY_EXE", "masonry")
+TILT = os.path.join(SOURCE, "cases", "tilting-block.json")
+POINTED = os.path.join(SOURCE, "cases", "pointed-arch.json")
+
+
+def cli(*args):
+    return subprocess.run([EXE, *args], check=True, capture_output=True, text=True)
+
+
+def tilting_block_dimensions():
+    """b, h and the centroid of the free block, from the case file's vertices."""
+    with open(TILT, encoding="utf-8") as f:
+        doc = json.load(f)
+    (block,) = [b for b in doc["blocks"] if not b.get("support")]
+    v = np.array(block["vertices"])
+    return v[:, 0].ptp(), v[:, 1].ptp(), v.mean(axis=0), block["density"] * v[:, 0].ptp() * v[:, 1].ptp() * block["depth"]
+
+
+class TiltingBlock(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.case = masonry.load_case(TILT)
+        cls.prd = masonry.run_prd(cls.case)
+
+    def test_topples_at_atan_b_over_h(self):
+        b, h, _, _ = tilting_block_dimensions()
+        step = self.case["motion.step"]
+        r = self.prd
+        self.assertEqual(r.status, "collapse")
+        self.assertEqual(r.d_unit, "rad")  # the slab only turns: d is its tilt
+        # The capacity is the last stable tilt: toppling lies within the next step.
+        self.assertLessEqual(r.capacity, math.atan(b / h))
+        self.assertLess(math.atan(b / h), r.capacity + step)
+
+    def test_capacity_as_the_command_line_prints_it(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            cli("prd", TILT, "--out", tmp, "--quiet")
+            with open(os.path.join(tmp, "results.json"), encoding="utf-8") as f:
+                self.assertEqual(json.load(f)["capacity"], self.prd.capacity)
+
+    def test_arrays_have_their_shapes_and_units(self):
+        r = self.prd
+        n = len(r.d)
+        self.assertGreater(n, 2)
+        self.assertEqual(r.d.shape, (n,))
+        self.assertEqual(r.settled.shape, (n,))
+        self.assertEqual(r.supports, ["ground"])
+        self.assertEqual(r.blocks, ["ground", "block"])
+        self.assertEqual(r.reactions.shape, (n, 1, 3))
+        self.assertEqual(r.poses.shape, (n, 2, 3))
+        self.assertEqual(len(r.open_corners), n)
+        _, _, centroid, mass = tilting_block_dimensions()
+        weight = mass * self.case["gravity"]
+        # N: at rest the slab carries the block's weight, straight up.
+        np.testing.assert_allclose(r.reactions[0, 0, :2], [0.0, weight], rtol=1e-9, atol=1e-9 * weight)
+        # m: the block's centroid at the start, from its vertices; rad: its rotation since the start.
+        np.testing.assert_allclose(r.poses[0, 1], [centroid[0], centroid[1], 0.0], atol=1e-12)
+        # At every tilt d (rad) the resting block has turned with the slab.
+        np.testing.assert_allclose(r.poses[:, 1, 2], r.d, atol=1e-9)
+        for step in r.open_corners:
+            for joint, corner, gap in step:
+                self.assertIn(corner, ("A", "B"))
+                self.assertLess(joint, len(r.joints))
+                self.assertGreaterEqual(gap, 0.0)
+        self.assertEqual(r.joints, [("ground", "block")])
+
+    def test_an_option_set_on_the_case_reaches_the_run(self):
+        case = masonry.load_case(TILT)
+        case["dem.friction_angle"] = 30
+        self.assertEqual(case["dem.friction_angle"], 30)
+        r = masonry.run_dem(case, max_steps=2)
+        self.assertEqual(r.settings["friction_angle"], 30)
+        self.assertEqual(len(r.d), 3)  # the settled start and two steps
+        r = masonry.run_prd(case, contact_tolerance=2e-5, options={"motion.step": 0.01})
+        self.assertEqual(r.settings["contact_tolerance"], 2e-5)
+        np.testing.assert_allclose(np.diff(r.d), 0.01, rtol=1e-12)
+
+    def test_save_writes_what_the_command_line_writes(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            self.prd.save(tmp)
+            with open(os.path.join(tmp, "results.json"), encoding="utf-8") as f:
+                self.assertEqual(f.read(), self.prd.to_json())
+            self.assertTrue(os.path.exists(os.path.join(tmp, "steps.csv")))
+            back = masonry.load_results(os.path.join(tmp, "results.json"), self.case)
+            np.testing.assert_array_equal(back.d, self.prd.d)
+
+    def test_ctrl_c_keeps_the_finished_steps(self):
+        seen = []
+
+        def progress(d, steps):
+            seen.append(steps)
+            if steps == 4:
+                os.kill(os.getpid(), signal.SIGINT)  # Ctrl-C
+
+        with tempfile.TemporaryDirectory() as tmp:
+            with self.assertRaises(masonry.Interrupted) as stop:
+                masonry.run_prd(self.case, out=tmp, progress=progress)
+            self.assertIsInstance(stop.exception, KeyboardInterrupt)
+            partial = stop.exception.result
+            self.assertEqual(partial.status, "running")
+            self.assertEqual(len(partial.d), 4)
+            np.testing.assert_array_equal(partial.d, self.prd.d[:4])
+            with open(os.path.join(tmp, "results.json"), encoding="utf-8") as f:
+                self.assertEqual(len(json.load(f)["steps"]), 4)
+        self.assertEqual(seen[-1], 4)
+
+    def test_an_error_in_progress_stops_the_run_and_is_raised(self):
+        def progress(d, steps):
+            if steps == 3:
+                raise ValueError("enough")
+
+        with self.assertRaisesRegex(ValueError, "enough"):
+            masonry.run_prd(self.case, progress=progress)
+
+    def test_compare(self):
+        same = masonry.compare(self.prd, masonry.run_prd(self.case), tolerances={"capacity": 1e-12})
+        self.assertTrue(same["pass"])
+        self.assertEqual(same["violations"], [])
+        self.assertEqual(same["d_unit"], "rad")
+        # Half the tilt increment locates the toppling half a degree closer: a capacity difference
+        # beyond a 1e-6 limit.
+        finer = masonry.run_prd(self.case, step=self.case["motion.step"] / 2)
+        k = masonry.compare(self.case, self.prd, finer, tolerances={"capacity": 1e-6})
+        self.assertFalse(k["pass"])
+        self.assertEqual(len(k["violations"]), 1)
+        self.assertIn("capacity", k["violations"][0])
+
+
+class PointedArch(unittest.TestCase):
+    def test_capacity_and_every_d_equal_the_command_line(self):
+        r = masonry.run_prd(masonry.load_case(POINTED))
+        with tempfile.TemporaryDirectory() as tmp:
+            cli("prd", POINTED, "--out", tmp, "--quiet")
+            with open(os.path.join(tmp, "results.json"), encoding="utf-8") as f:
+                doc = json.load(f)
+        self.assertEqual(r.status, doc["stopped"])
+        self.assertEqual(r.capacity, doc["capacity"])
+        self.assertEqual(r.d.tolist(), [s["d"] for s in doc["steps"]])
+        self.assertEqual(r.d_unit, "m")
+        for k, s in enumerate(doc["steps"]):
+            for j, rc in enumerate(s["reactions"]):
+                self.assertEqual(rc["support"], r.supports[j])
+                self.assertEqual(r.reactions[k, j].tolist(), [rc["force"][0], rc["force"][1], rc["moment"]])
+
+
+class BadInput(unittest.TestCase):
+    def test_a_malformed_case_names_the_field(self):
+        with open(TILT, encoding="utf-8") as f:
+            doc = json.load(f)
+        doc["blocks"][1]["density"] = -2000
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "bad.json")
+            with open(path, "w", encoding="utf-8") as f:
+                json.dump(doc, f)
+            with self.assertRaises(masonry.MasonryError) as e:
+                masonry.load_case(path)
+        self.assertIsInstance(e.exception, Exception)
+        self.assertIn("bad.json", str(e.exception))
+        self.assertIn("density", str(e.exception))
+        self.assertNotIn("\n", str(e.exception))
+
+    def test_a_bad_option_gets_the_loaders_message(self):
+        case = masonry.load_case(TILT)
+        with self.assertRaises(masonry.MasonryError) as e:
+            case["dem.friction_angle"] = -5
+        self.assertIn("friction_angle", str(e.exception))
+        self.assertEqual(case["dem.friction_angle"], 35.0)  # unchanged
+        with self.assertRaises(masonry.MasonryError) as e:
+            masonry.run_dem(case, no_such_setting=1)
+        self.assertIn("no_such_setting", str(e.exception))
+        with self.assertRaises(masonry.MasonryError):
+            masonry.parse_case("{", "inline")
+        with self.assertRaises(masonry.MasonryError) as e:
+            masonry.generate("circular-arch", thickness=-1)
+        self.assertIn("thickness", str(e.exception))
+        with self.assertRaises(masonry.MasonryError):
+            masonry.compare(masonry.run_prd(case, max_steps=1), masonry.run_prd(case, max_steps=1), tolerances={"capacityy": 1})
+
+
+class Generators(unittest.TestCase):
+    def test_generate_equals_the_command_line(self):
+        names = [g["name"] for g in masonry.generators()]
+        self.assertIn("circular-arch", names)
+        (arch,) = [g for g in masonry.generators() if g["name"] == "circular-arch"]
+        self.assertIn("embrace-deg", [p["name"] for p in arch["parameters"]])
+        case = masonry.generate("circular-arch", thickness=0.1, voussoirs=9, embrace_deg=160)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "arch.json")
+            cli("cases", "circular-arch", "--out", path, "--thickness", "0.1", "--voussoirs", "9", "--embrace-deg", "160")
+            with open(path, encoding="utf-8") as f:
+                self.assertEqual(case.to_json(), f.read())
+        self.assertEqual(len(case.blocks), 11)  # 9 voussoirs and two supports
+        self.assertEqual(case.blocks[1]["vertices"].shape[1], 2)
+
+    def test_blocks_and_motion_are_settable(self):
+        case = masonry.load_case(TILT)
+        blocks = case.blocks
+        blocks[1]["vertices"] = blocks[1]["vertices"] * [1.0, 0.5]  # half as tall
+        case.blocks = blocks
+        self.assertAlmostEqual(case.blocks[1]["vertices"][:, 1].max(), 0.2)
+        motion = case.motion
+        motion["max_steps"] = 5
+        case.motion = motion
+        self.assertEqual(case["motion.max_steps"], 5)
+        bad = case.blocks
+        bad[1]["vertices"] = bad[1]["vertices"][:2]
+        with self.assertRaises(masonry.MasonryError) as e:
+            case.blocks = bad
+        self.assertIn("block", str(e.exception))
+
+
+class Studies(unittest.TestCase):
+    def test_validate_one_benchmark(self):
+        rows = masonry.validate(names=["block-least-friction"])
+        self.assertEqual([(r["benchmark"], r["method"]) for r in rows], [("block-least-friction", "prd")])
+        self.assertTrue(rows[0]["pass"])
+        with self.assertRaises(masonry.MasonryError):
+            masonry.validate(names=["no-such-benchmark"])
+
+    def test_sweep_returns_what_it_writes(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            spec = os.path.join(tmp, "sweep.json")
+            with open(spec, "w", encoding="utf-8") as f:
+                json.dump({"format": "masonry-sweep/1", "name": "tilt steps", "case": TILT, "methods": ["prd"],
+                           "vary": {"motion.step": [0.017453292519943295, 0.008726646259971648]}}, f)
+            out = os.path.join(tmp, "out")
+            got = masonry.sweep(spec, out)
+            with open(os.path.join(out, "sweep.json"), encoding="utf-8") as f:
+                self.assertEqual(got["sweep"], json.load(f))
+            with open(os.path.join(out, "sensitivity.json"), encoding="utf-8") as f:
+                self.assertEqual(got["sensitivity"], json.load(f))
+            self.assertEqual(len(got["sweep"]["runs"]), 2)
+
+
+if __name__ == "__main__":
+    unittest.main()
