@@ -210,6 +210,20 @@ class Generators(unittest.TestCase):
         self.assertEqual(len(case.blocks), 11)  # 9 voussoirs and two supports
         self.assertEqual(case.blocks[1]["vertices"].shape[1], 2)
 
+    def test_the_wall_generator_equals_the_command_line(self):
+        # Its options are words and lists (bond, openings), not a parameter table: read by their names.
+        case = masonry.generate("wall", courses=12, bricks=8, bond="stack", opening=["0.75,0.25,0.5,0.5,arch"], moving="left")
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "wall.json")
+            cli("cases", "wall", "--out", path, "--courses", "12", "--bricks", "8", "--bond", "stack",
+                "--opening", "0.75,0.25,0.5,0.5,arch", "--moving", "left")
+            with open(path, encoding="utf-8") as f:
+                self.assertEqual(case.to_json(), f.read())
+        for bad, field in [({"bond": "flemish"}, "bond"), ({"courses": 2.5}, "courses"), ({"colour": 1}, "colour")]:
+            with self.assertRaises(masonry.MasonryError) as e:
+                masonry.generate("wall", **bad)
+            self.assertIn(field, str(e.exception))
+
     def test_blocks_and_motion_are_settable(self):
         case = masonry.load_case(TILT)
         blocks = case.blocks
