@@ -168,12 +168,12 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    if (!o->quiet) warn_dem_cost(c, s);
                    if (o->convergence) return run_study(c, s, Study::convergence, *o);
                    if (o->stiffness_study) return run_study(c, s, Study::stiffness, *o);
-                   RunProgress progress("dem", s.step * s.max_steps, 0.0, dem_step_detail);
+                   RunProgress progress("dem", s.step * s.max_steps, 0.0, dem_step_detail, path_unit(c));
                    const RunResult r =
                        run_dem(c, s, {o->out_dir, o->quiet ? std::function<void(const RunResult&)>() : std::ref(progress)});
                    if (!o->quiet)
-                     std::fprintf(stderr, "dem: %s, capacity %.6g m after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n",
-                                  status_name(r.status), r.capacity, r.stable_steps, r.timing.cycles, r.timing.total_s,
+                     std::fprintf(stderr, "dem: %s, capacity %.6g %s after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n",
+                                  status_name(r.status), r.capacity, path_unit(c).c_str(), r.stable_steps, r.timing.cycles, r.timing.total_s,
                                   r.settings.value("dt", 0.0));
                    if (!located(r.status)) std::fprintf(stderr, "dem: %s\n", r.message.c_str());
                    return exit_code(r.status);

@@ -142,11 +142,11 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                      if (*friction >= 0) s.sliding_check = true;
                      if (!from->empty()) s.start = start_of(c, *from, *from_d, *offsets);
                      warn_lp_cost(c, "prd", 1e-6);
-                     RunProgress progress("prd", (s.start ? s.start->d : 0.0) + s.step * s.max_steps);
+                     RunProgress progress("prd", (s.start ? s.start->d : 0.0) + s.step * s.max_steps, 1.0, {}, path_unit(c));
                      const RunResult r = run_prd(c, s, {*dir, *quiet ? std::function<void(const RunResult&)>() : std::ref(progress)});
                      if (!*quiet || !located(r.status))
                        std::cerr << "prd: " << printable(c.name) << ": " << status_name(r.status) << (r.message.empty() ? "" : " (" + r.message + ")")
-                                 << ", capacity " << r.capacity << " m after " << r.stable_steps << " steps, "
+                                 << ", capacity " << r.capacity << " " << path_unit(c) << " after " << r.stable_steps << " steps, "
                                  << r.timing.total_s << " s (" << r.timing.lp_solves << " LPs); results in " << *dir << "\n";
                      if (r.sliding && r.sliding->any) {
                        std::cerr << "prd: sliding check: some admissible force state avoids sliding at every step for friction angles above "

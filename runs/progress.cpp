@@ -22,8 +22,15 @@ std::string time_left(double elapsed_s, double fraction_done, bool at_most) {
   return b;
 }
 
-RunProgress::RunProgress(std::string who, double d_end, double every_s, std::function<std::string(const StepRecord&)> detail)
-    : who_(std::move(who)), d_end_(d_end), every_s_(every_s), detail_(std::move(detail)), start_(std::chrono::steady_clock::now()), last_(start_) {}
+RunProgress::RunProgress(std::string who, double d_end, double every_s, std::function<std::string(const StepRecord&)> detail,
+                         std::string unit)
+    : who_(std::move(who)),
+      d_end_(d_end),
+      every_s_(every_s),
+      detail_(std::move(detail)),
+      unit_(std::move(unit)),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
 void RunProgress::operator()(const RunResult& r) {
   // From the first step on the path (the start's record, or a DEM's settling, tells no pace).
@@ -34,7 +41,7 @@ void RunProgress::operator()(const RunResult& r) {
   const double d0 = r.steps.front().d;
   const double fraction = d_end_ > d0 ? (s.d - d0) / (d_end_ - d0) : NAN;
   char b[160];
-  std::snprintf(b, sizeof b, "%s: step %d, d = %.6g m of at most %.6g m", who_.c_str(), s.index, s.d, d_end_);
+  std::snprintf(b, sizeof b, "%s: step %d, d = %.6g %s of at most %.6g %s", who_.c_str(), s.index, s.d, unit_.c_str(), d_end_, unit_.c_str());
   const std::string detail = detail_ ? detail_(s) : std::string();
   std::cerr << b << (detail.empty() ? "" : " (" + detail + ")") << time_left(since(start_), fraction, true) << "\n" << std::flush;
 }

@@ -22,16 +22,19 @@ std::string time_left(double elapsed_s, double fraction_done, bool at_most);
 
 // A capacity run's progress (RunOutput::on_step): after a recorded step beyond the start, at most
 // one line every `every_s` seconds. `d_end` is where the loading path ends (step x max_steps past its start);
-// `detail` adds the method's own words about the step (the DEM's hold).
+// `detail` adds the method's own words about the step (the DEM's hold); `unit` is d's (path_unit:
+// "m", or "rad" where the supports only turn).
 class RunProgress {
  public:
-  RunProgress(std::string who, double d_end, double every_s = 1.0, std::function<std::string(const StepRecord&)> detail = {});
+  RunProgress(std::string who, double d_end, double every_s = 1.0, std::function<std::string(const StepRecord&)> detail = {},
+              std::string unit = "m");
   void operator()(const RunResult& r);
 
  private:
   std::string who_;
   double d_end_, every_s_;
   std::function<std::string(const StepRecord&)> detail_;
+  std::string unit_;
   std::chrono::steady_clock::time_point start_, last_;
   bool printed_ = false;
 };

@@ -66,7 +66,10 @@ TEST(CommandLine, QuietSaysNothingButWhyItFailed) {
   EXPECT_EQ(prd.err, "");
   const Ran loud = run("prd " + kTilt + " --out " + out, dir);
   EXPECT_EQ(loud.rc, 0);
-  EXPECT_NE(loud.err.find("prd: step 1, d = 0.0174533 m of at most 1.0472 m"), std::string::npos) << loud.err;
+  // The tilting block's d is its support's rotation: 1 degree a step, 60 at most, in rad; it
+  // stands at 26 degrees, the last whole degree below atan(b/h) = atan(0.5) = 26.57.
+  EXPECT_NE(loud.err.find("prd: step 1, d = 0.0174533 rad of at most 1.0472 rad"), std::string::npos) << loud.err;
+  EXPECT_NE(loud.err.find("capacity 0.453786 rad"), std::string::npos) << loud.err;
   EXPECT_NE(loud.err.find(" s, at most "), std::string::npos) << loud.err;
   EXPECT_NE(loud.err.find("collapse, capacity"), std::string::npos) << loud.err;
   // compare --quiet: no progress, no summary (it printed its summary before).
