@@ -118,12 +118,12 @@ const char* hold_end_name(HoldEnd e) {
 }
 
 namespace {
-// The cap's collapse rule (hold()) over a window from the cap's start: the structure has
-// drifted a tenth of the collapse drift and travels at least as far over the window's second
-// half as over its first. (Not also "pushed at least as hard", as a creep must be: a block
-// sliding down a slope at constant friction speeds up while its unbalanced force, read each
-// cycle, falls by 1-2%.)
-bool early_collapse(const DemModel& m, const Case& c, const std::vector<Vec2>& start, const std::vector<Vec2>& window_start,
+// The cap's collapse rule (hold()), at the cap and over the early windows from the cap's start:
+// the structure has drifted a tenth of the collapse drift and travels at least as far over the
+// window's second half as over its first. (Not also "pushed at least as hard", as a creep must
+// be: a block sliding down a slope at constant friction speeds up while its unbalanced force,
+// read each cycle, falls by 1-2%.)
+bool speeding_up_far_out(const DemModel& m, const Case& c, const std::vector<Vec2>& start, const std::vector<Vec2>& window_start,
                     const std::vector<Vec2>& window_mid, const Limits& lim) {
   return largest_move(m, c, start) > 0.1 * lim.collapse_drift &&
          largest_move(m, c, window_mid) >= largest_distance(window_start, window_mid, c);
@@ -142,7 +142,8 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
   int extensions = 0;
   std::vector<Vec2> cap_start = start, mid;
   double unbalanced[2] = {0, 0};  // sums of the unbalanced-force ratio over the cap's two halves
-  // The early looks (kLookSegments): positions at each 1/32 of the cap up to its half.
+  // The early looks (kLookSegments): positions at each 1/32 of the cap up to its half (the
+  // first, looks[0], is cap_start).
   const long long segment = budget / kLookSegments;
   std::vector<std::vector<Vec2>> looks(kLookSegments / 2 + 1);
   // Kinetic damping: stop every free block when the kinetic energy passes a peak, so the hold
@@ -192,7 +193,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     if (segment > 0 && (in_cap + 1) % (2 * segment) == 0) {
       const long long j = (in_cap + 1) / (2 * segment);  // the window is 2j segments long, its middle at segment j
       check_energy(m, lim.energy_floor);  // a diverging integration also drifts: it is an error, never a collapse
-      if (j >= kFirstLook && j < kLookSegments / 2 && early_collapse(m, c, start, looks[0], looks[size_t(j)], lim)) {
+      if (j >= kFirstLook && j < kLookSegments / 2 && speeding_up_far_out(m, c, start, cap_start, looks[size_t(j)], lim)) {
         o.end = HoldEnd::collapse;
         break;
       }
@@ -208,11 +209,10 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     // unbalanced force.
     o.first_half = largest_distance(cap_start, mid, c);
     o.second_half = largest_move(m, c, mid);
-    const double drift = largest_move(m, c, start);
     const bool pushed_as_hard = unbalanced[1] >= unbalanced[0];  // the halves have equal lengths, to a cycle
     const bool creeping = o.second_half > lim.creep_floor && o.second_half >= kCreepRatio * o.first_half && pushed_as_hard;
     unbalanced[0] = unbalanced[1] = 0;
-    if (drift > 0.1 * lim.collapse_drift && o.second_half >= o.first_half) {
+    if (speeding_up_far_out(m, c, start, cap_start, mid, lim)) {
       // Collapsing more slowly than the cap (on the settlement cathedral, a block 0.47 m from its
       // start still moving at 0.13 m/s after 30 s).
       o.end = HoldEnd::collapse;
