@@ -1,5 +1,5 @@
-// The `masonry` executable is one CLI11 app; each library directory adds its subcommands
-// through a `cli.cpp` of its own (thin front ends), and main() runs the one that was chosen.
+// The `masonry` executable is one CLI11 app; each library's subcommands are added by a thin
+// front end of its own in app/ (app/<library>_commands.cpp), and main() runs the one chosen.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -26,12 +26,12 @@ struct Command {
 };
 using Commands = std::vector<Command>;
 
-void add_prd_commands(CLI::App& app, Commands& out);    // prd/cli.cpp: prd, check
-void add_case_commands(CLI::App& app, Commands& out);   // cases/cli.cpp: cases
-void add_dem_commands(CLI::App& app, Commands& out);    // dem/cli.cpp: dem
-void add_compare_commands(CLI::App& app, Commands& out);  // compare/cli.cpp: compare, demo
-void add_sweep_commands(CLI::App& app, Commands& out);    // sweep/cli.cpp: sweep
-void add_tradeoff_commands(CLI::App& app, Commands& out); // tradeoff/cli.cpp: tradeoff
-void add_validate_commands(CLI::App& app, Commands& out); // validate/cli.cpp: validate
+void add_prd_commands(CLI::App& app, Commands& out);    // app/prd_commands.cpp: prd, check
+void add_case_commands(CLI::App& app, Commands& out);   // app/cases_commands.cpp: cases
+void add_dem_commands(CLI::App& app, Commands& out);    // app/dem_commands.cpp: dem
+void add_compare_commands(CLI::App& app, Commands& out);  // app/compare_commands.cpp: compare, demo
+void add_sweep_commands(CLI::App& app, Commands& out);    // app/sweep_commands.cpp: sweep
+void add_tradeoff_commands(CLI::App& app, Commands& out); // app/tradeoff_commands.cpp: tradeoff
+void add_validate_commands(CLI::App& app, Commands& out); // app/validate_commands.cpp: validate
 
 }  // namespace masonry

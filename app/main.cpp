@@ -12,27 +12,13 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "Help for every subcommand");
   app.set_version_flag("--version", masonry::version_text(), "The version and the git commit this build was made from");
   masonry::Commands commands;
-#ifdef MASONRY_HAVE_PRD_CLI
   masonry::add_prd_commands(app, commands);
-#endif
-#ifdef MASONRY_HAVE_CASES_CLI
   masonry::add_case_commands(app, commands);
-#endif
-#ifdef MASONRY_HAVE_DEM_CLI
   masonry::add_dem_commands(app, commands);
-#endif
-#ifdef MASONRY_HAVE_COMPARE_CLI
   masonry::add_compare_commands(app, commands);
-#endif
-#ifdef MASONRY_HAVE_SWEEP_CLI
   masonry::add_sweep_commands(app, commands);
-#endif
-#ifdef MASONRY_HAVE_TRADEOFF_CLI
   masonry::add_tradeoff_commands(app, commands);
-#endif
-#ifdef MASONRY_HAVE_VALIDATE_CLI
   masonry::add_validate_commands(app, commands);
-#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -46,7 +46,7 @@ struct PyResult {
 // not what stopping from outside is.
 struct Stop {};
 
-// "35", "0.5": a number as the command line's labels write it (compare/cli.cpp).
+// "35", "0.5": a number as the command line's labels write it (app/compare_commands.cpp).
 std::string number_text(double x) {
   std::ostringstream o;
   o << x;
