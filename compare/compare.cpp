@@ -101,7 +101,7 @@ std::string missing(const RunResult& a, const RunResult& b, const Comparison& k,
 RunSummary summarise(const RunResult& r, const std::string& label, int min_state_records) {
   RunSummary s;
   s.method = r.method;
-  s.label = label.empty() ? (r.method == "prd" ? "PRD" : r.method == "dem" ? "DEM" : r.method) : label;
+  s.label = label.empty() ? method_label(r) : label;
   s.capacity = r.capacity;
   s.collapsed = r.collapsed;
   s.status = r.status;

@@ -402,7 +402,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   const auto t_start = cpu_now();
   double io_s = 0;
   RunResult r;
-  r.method = "prd";
+  r.method = method_name(Method::prd);
   r.case_name = c.name;
   Walk w(c, s);
   r.capacity = w.d0;  // a start that is unstable as it stands: no stable configuration beyond it
