@@ -31,8 +31,6 @@ inline Eigen::Matrix2d rot(double a) {
   r << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
   return r;
 }
-inline Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }
-inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 struct GlpDeleter {
   void operator()(glp_prob* p) const { glp_delete_prob(p); }
