@@ -104,10 +104,10 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     for (const std::string& d : o.runs) {
       results.push_back(load_results(d + "/results.json", c));
       const RunResult& r = results.back();
-      std::string label = r.method == "prd" ? "PRD" : r.method == "dem" ? "DEM" : r.method;
-      if (r.method == "dem" && r.settings.contains("friction_angle") && r.settings["friction_angle"].is_number())
+      std::string label = method_label(r);
+      if (known_method(r) == Method::dem && r.settings.contains("friction_angle") && r.settings["friction_angle"].is_number())
         label = dem_label(r.settings["friction_angle"].get<double>());
-      if (r.method == "prd" && r.settings.contains("hold_closed")) label = prd_label(r.settings["hold_closed"]);
+      if (known_method(r) == Method::prd && r.settings.contains("hold_closed")) label = prd_label(r.settings["hold_closed"]);
       // Links in the report are relative to it.
       std::error_code ec;
       std::string rel = std::filesystem::relative(d, o.out_dir, ec).generic_string();

@@ -194,7 +194,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                      if (*step > 0) return print_first_step(c, *tol > 0 ? *tol : c.prd.contact_tolerance, *step, *held, *as_json);
                      const PrdCheck k = prd_check(c, *tol > 0 ? *tol : c.prd.contact_tolerance);
                      RunResult r;
-                     r.method = "prd";
+                     r.method = method_name(Method::prd);
                      r.case_name = c.name;
                      r.joints = k.joints;
                      r.steps.push_back(k.state);

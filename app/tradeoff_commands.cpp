@@ -48,14 +48,14 @@ std::string command_line(const TradeoffOpts& o) {
 
 // --vary [METHOD:]KEY=V1,V2,...: the values of KEY for METHOD (or for every method that reads
 // the key), replacing the plan's list.
-void apply_vary(Plan& plan, const std::string& text, const std::vector<std::string>& methods) {
+void apply_vary(Plan& plan, const std::string& text, const std::vector<Method>& methods) {
   std::string rest = text, only;
   const size_t colon = text.find(':');
   const size_t eq = text.find('=');
   if (colon != std::string::npos && (eq == std::string::npos || colon < eq)) {
     only = text.substr(0, colon);
     rest = text.substr(colon + 1);
-    if (only != "prd" && only != "dem") throw std::runtime_error("--vary " + text + ": unknown method '" + only + "' (prd, dem)");
+    if (!parse_method(only)) throw std::runtime_error("--vary " + text + ": unknown method '" + only + "' (prd, dem)");
   }
   const size_t e = rest.find('=');
   if (e == std::string::npos || e == 0 || e + 1 == rest.size())
@@ -69,7 +69,8 @@ void apply_vary(Plan& plan, const std::string& text, const std::vector<std::stri
     values.push_back(parse_assignment(key + "=" + item, "--vary " + text).value);
   }
   bool used = false;
-  for (const std::string& m : methods) {
+  for (const Method method : methods) {
+    const std::string m = method_name(method);
     if (!only.empty() && m != only) continue;
     if (key.rfind(m + ".", 0) != 0 && key.rfind("motion.", 0) != 0) continue;
     // Through the plan parser, so a --vary value gets the checks a plan file gets.
@@ -91,33 +92,38 @@ int run_tradeoff_command(const TradeoffOpts& o) {
     base = with_option(base, opt.key, opt.value);
     t.base.push_back(opt);
   }
-  for (const std::string& m : o.methods)
-    if (m != "prd" && m != "dem") throw std::runtime_error("--methods: unknown method '" + m + "' (prd, dem)");
+  std::vector<Method> methods;
+  for (const std::string& m : o.methods) {
+    const std::optional<Method> method = parse_method(m);
+    if (!method) throw std::runtime_error("--methods: unknown method '" + m + "' (prd, dem)");
+    methods.push_back(*method);
+  }
   Plan plan = o.plan_path.empty() ? default_plan(o.quick) : load_plan(o.plan_path);
   const std::string plan_source = o.plan_path.empty() ? (o.quick ? "(built-in quick plan)" : "(built-in plan)") : o.plan_path;
-  for (const std::string& v : o.varies) apply_vary(plan, v, o.methods);
+  for (const std::string& v : o.varies) apply_vary(plan, v, methods);
   if (o.repeat)
     for (auto& [name, m] : plan.methods) m.repeat = *o.repeat;
   RunOptions ro;
   ro.runs_dir = o.runs_dir.empty() ? (fs::path(o.out_dir) / "runs").string() : o.runs_dir;
   ro.resume = o.resume;
-  std::vector<std::string> reused;
-  for (const auto& [m, dir] : {std::pair<std::string, std::string>{"prd", o.reference_prd}, {"dem", o.reference_dem}}) {
+  std::vector<Method> reused;
+  for (const auto& [method, dir] : {std::pair<Method, std::string>{Method::prd, o.reference_prd}, {Method::dem, o.reference_dem}}) {
     if (dir.empty()) continue;
-    if (std::find(o.methods.begin(), o.methods.end(), m) == o.methods.end())
+    const std::string m = method_name(method);
+    if (std::find(methods.begin(), methods.end(), method) == methods.end())
       throw std::runtime_error("--reference-" + m + " given, but " + m + " is not among --methods");
     // Fail before any long run when the reference cannot be read (results.json, or the .xz the
     // runs kept under reports/ are).
     if (!fs::exists(fs::path(dir) / "results.json") && !fs::exists(fs::path(dir) / "results.json.xz"))
       throw std::runtime_error(dir + "/results.json: no such file (--reference-" + m + ")");
-    ro.reference_dir[m] = dir;
-    reused.push_back(m);
+    ro.reference_dir[method] = dir;
+    reused.push_back(method);
   }
-  const std::vector<PlannedRun> runs = expand_plan(base, plan, o.methods, plan_source, reused);
+  const std::vector<PlannedRun> runs = expand_plan(base, plan, methods, plan_source, reused);
   if (!o.quiet || o.dry_run) {
     std::cerr << "tradeoff: " << runs.size() << " settings on " << base.name << ":\n";
     for (const PlannedRun& p : runs)
-      std::cerr << "  " << p.setting.method << "  " << p.setting.label << (p.repeat > 1 ? "  x" + std::to_string(p.repeat) : "")
+      std::cerr << "  " << method_name(p.setting.method) << "  " << p.setting.label << (p.repeat > 1 ? "  x" + std::to_string(p.repeat) : "")
                 << "  (" << p.id << ")\n";
   }
   if (o.dry_run) {
@@ -133,7 +139,7 @@ int run_tradeoff_command(const TradeoffOpts& o) {
   t.d_unit = path_unit(base);
   t.command = command_line(o);
   t.plan = plan;
-  t.methods = o.methods;
+  t.methods = methods;
   t.target_capacity = o.target_capacity;
   t.target_thrust = o.target_thrust;
   fs::create_directories(o.out_dir);

@@ -78,7 +78,7 @@ bool append_arc(std::vector<Vec2>& out, const Vec2& p, const Vec2& q, double bul
   const double chords = std::ceil(std::abs(theta) / a_max);
   if (!(chords <= kMaxChordsPerArc)) return false;
   const Vec2 mid = 0.5 * (p + q), dir = (q - p) / chord;
-  const Vec2 left(-dir.y(), dir.x());
+  const Vec2 left = perp(dir);
   // The centre lies r cos(theta/2) to the left of p->q for a counter-clockwise arc (to the right
   // beyond a half circle, where the cosine turns negative), mirrored for a clockwise one.
   const Vec2 centre = mid + (theta > 0 ? 1.0 : -1.0) * r * std::cos(std::abs(theta) / 2) * left;

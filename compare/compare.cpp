@@ -101,7 +101,7 @@ std::string missing(const RunResult& a, const RunResult& b, const Comparison& k,
 RunSummary summarise(const RunResult& r, const std::string& label, int min_state_records) {
   RunSummary s;
   s.method = r.method;
-  s.label = label.empty() ? (r.method == "prd" ? "PRD" : r.method == "dem" ? "DEM" : r.method) : label;
+  s.label = label.empty() ? method_label(r) : label;
   s.capacity = r.capacity;
   s.collapsed = r.collapsed;
   s.status = r.status;
@@ -269,7 +269,7 @@ std::vector<RingSpot> ring_neighbours(const Case& c, const RunResult& r, int joi
       const JointInfo& to = r.joints[size_t(next)];
       // The side of the line from this joint's midpoint to the next one's.
       const Vec2 u = 0.5 * (to.a + to.b) - m1;
-      const auto side = [&](const Vec2& p) { return u.x() * (p.y() - m1.y()) - u.y() * (p.x() - m1.x()); };
+      const auto side = [&](const Vec2& p) { return cross(u, p - m1); };
       const double s1 = side(p1), sa = side(to.a), sb = side(to.b);
       const int nc = s1 * sa >= s1 * sb ? 0 : 1;
       if (!(s1 * (nc == 0 ? sa : sb) > 0)) continue;  // no corner clearly on that side

@@ -13,8 +13,6 @@ static_assert(kMaxPieceVertices == b2_maxPolygonVertices, "piece size must follo
 
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Convex, collinear vertices allowed (convex_pieces removes them: see without_straight_vertices).
 bool is_convex(const std::vector<Vec2>& p) {
   const size_t n = p.size();

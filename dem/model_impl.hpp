@@ -15,9 +15,7 @@ namespace masonry {
 
 namespace dem_detail {
 
-inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 inline Vec2 rotate(const Vec2& v, double c, double s) { return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y()); }
-inline Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }  // omega x r for unit omega
 
 struct PointState {
   int key = -1;          // feature id: reference edge, incident edge, flip, end of the incident edge

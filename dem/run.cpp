@@ -338,7 +338,7 @@ void close(Run& u, const Failure& f) {
 
 RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(const RunResult&)>& on_step) {
   RunResult r;
-  r.method = "dem";
+  r.method = method_name(Method::dem);
   r.case_name = c.name;
   r.total_weight = total_weight(c);
   Run u(c, s, on_step, r);

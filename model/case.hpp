@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-namespace masonry {
+#include "model/geometry.hpp"
 
-using Vec2 = Eigen::Vector2d;
+namespace masonry {
 
 // m: how far from the origin a vertex, load point or pivot may lie (README, "Ranges"): 100 km,
 // far beyond any structure, near enough that every derived quantity keeps its digits.

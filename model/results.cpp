@@ -125,6 +125,13 @@ ojson mechanism_json(const Mechanism& m, const Case& c) {
   return out;
 }
 
+std::optional<Method> known_method(const RunResult& r) { return parse_method(r.method); }
+
+std::string method_label(const RunResult& r) {
+  const std::optional<Method> m = known_method(r);
+  return m ? method_label(*m) : r.method;
+}
+
 ojson to_json(const RunResult& r, const Case& c) {
   ojson j;
   j["format"] = "masonry-results/1";
@@ -152,7 +159,7 @@ ojson to_json(const RunResult& r, const Case& c) {
   j["settings"] = r.settings;
   ojson t;
   t["total_s"] = json_number(r.timing.total_s);
-  if (r.method == "prd") {
+  if (known_method(r) == Method::prd) {
     t["lp_s"] = json_number(r.timing.lp_s);
     t["lp_solves"] = r.timing.lp_solves;
     t["basis_evaluations"] = r.timing.basis_evaluations;

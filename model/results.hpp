@@ -11,6 +11,7 @@
 
 #include "model/case.hpp"
 #include "model/io.hpp"
+#include "model/method.hpp"
 
 namespace masonry {
 
@@ -194,7 +195,7 @@ struct UnconfirmedFailure {
 };
 
 struct RunResult {
-  std::string method;           // "prd", "dem", or an outside solver's own name
+  std::string method;           // method_name(Method), or an outside solver's own name (known_method)
   std::string case_name;
   std::string version;          // the code that made it: masonry's version_text(), or the solver's
   double capacity = 0.0;        // m, the last stable d
@@ -217,6 +218,11 @@ struct RunResult {
   bool limit_point = false;
   std::vector<UnconfirmedFailure> unconfirmed_failures;  // DEM (confirm_collapse)
 };
+
+// The method that made a run, where it is one of ours (an outside solver's run: nothing), and
+// the label people read: "PRD", "DEM", or the outside solver's name.
+std::optional<Method> known_method(const RunResult& r);
+std::string method_label(const RunResult& r);
 
 // Throws std::runtime_error naming the step and the quantity when a record holds a number that
 // is not finite: a run whose state turned non-finite stops with an error, never a result.

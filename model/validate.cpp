@@ -9,8 +9,6 @@ namespace masonry {
 
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Proper or touching intersection of closed segments pq and rs.
 bool segments_intersect(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s, double tol) {
   const Vec2 d1 = q - p, d2 = s - r;
@@ -50,7 +48,7 @@ bool polygons_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b, do
       const Vec2 mid = 0.5 * (p + q);
       const Vec2 d = q - p;
       // A point just inside P next to the middle of the edge (P is counter-clockwise).
-      const Vec2 in = mid + 0.01 * Vec2(-d.y(), d.x());
+      const Vec2 in = mid + 0.01 * perp(d);
       if (deep_inside(p, Q) || deep_inside(mid, Q) || (point_in_polygon(in, P) && deep_inside(in, Q))) return true;
     }
   }

@@ -16,6 +16,7 @@
 #include "model/case.hpp"
 #include "model/interfaces.hpp"
 #include "model/io.hpp"
+#include "prd/glpk_hooks.hpp"
 #include "prd/prd.hpp"
 #include "model/results.hpp"
 
@@ -31,12 +32,17 @@ inline Eigen::Matrix2d rot(double a) {
   r << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
   return r;
 }
-inline Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }
-inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// A GLPK problem, deleted with its owner unless an error freed GLPK's environment since it was
+// made (glpk_guarded): then it is gone already.
 struct GlpDeleter {
-  void operator()(glp_prob* p) const { glp_delete_prob(p); }
+  unsigned generation = 0;  // prd::glpk_generation() when it was made
+  void operator()(glp_prob* p) const {
+    if (generation == prd::glpk_generation()) glp_delete_prob(p);
+  }
 };
+using GlpProblem = std::unique_ptr<glp_prob, GlpDeleter>;
+inline GlpProblem new_glp_problem() { return GlpProblem(glp_create_prob(), GlpDeleter{prd::glpk_generation()}); }
 
 struct Endpoint {
   int joint;
@@ -69,7 +75,7 @@ struct Model {
   std::vector<double> weight;  // N
   double force_unit = 1.0;     // N: the LP's objective is the loads over this (build_model)
   int ncols = 0;
-  std::unique_ptr<glp_prob, GlpDeleter> lp;
+  GlpProblem lp;
   bool fresh = true;            // not solved yet (solve)
   std::vector<double> row_coef;  // per LP row: its entry count and coefficients as GLPK holds them (update_lp)
   FirstBasis first_basis = FirstBasis::by_size;
@@ -172,7 +178,7 @@ struct FrictionProblem {
 };
 // Its GLPK problem, loaded once per configuration and solved for several mu, warm started.
 struct SlidingLp {
-  std::unique_ptr<glp_prob, GlpDeleter> lp{glp_create_prob()};
+  GlpProblem lp = new_glp_problem();
   long long solves = 0;
   bool fresh = true;  // no solve yet on the loaded problem: start from the standard basis
 };

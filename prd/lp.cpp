@@ -56,7 +56,7 @@ Model build_model(const Case& c, double tol) {
     m.ends.push_back({static_cast<int>(k), 1, m.joints[k].b, m.joints[k].b});
   }
 
-  m.lp.reset(glp_create_prob());
+  m.lp = new_glp_problem();
   glp_prob* lp = m.lp.get();
   glp_set_obj_dir(lp, GLP_MIN);
   if (m.ncols > 0) glp_add_cols(lp, m.ncols);
@@ -156,10 +156,18 @@ void update_lp(Model& m, double h, double scale, double h_open) {
   }
 }
 
+// GLPK's solves, where the numbers can fail its internal checks: guarded, so that such a failure
+// is the run's error (prd/glpk_hooks.hpp).
+int simplex(glp_prob* lp, const glp_smcp& parm) { return prd::glpk_guarded([&] { return glp_simplex(lp, &parm); }); }
+int exact(glp_prob* lp, const glp_smcp& parm) { return prd::glpk_guarded([&] { return glp_exact(lp, &parm); }); }
+
 // glp_adv_basis prints whatever msg_lev says; the harness's output is its own.
 void quiet_adv_basis(glp_prob* lp) {
   const int was = glp_term_out(GLP_OFF);
-  glp_adv_basis(lp, 0);
+  prd::glpk_guarded([&] {
+    glp_adv_basis(lp, 0);
+    return 0;
+  });
   glp_term_out(was);
 }
 
@@ -194,15 +202,15 @@ LpStatus solve(Model& m) {
                         (m.first_basis == FirstBasis::by_size && m.ncols >= 3 * kAdvancedBasisBlocks);
   if (m.fresh && advanced) quiet_adv_basis(lp);
   m.fresh = false;
-  int rc = glp_simplex(lp, &parm);
+  int rc = simplex(lp, parm);
   if (!conclusive(rc)) {
     quiet_adv_basis(lp);
     parm.r_test = GLP_RT_STD;
-    rc = glp_simplex(lp, &parm);
+    rc = simplex(lp, parm);
   }
   if (!conclusive(rc)) {
     quiet_adv_basis(lp);
-    rc = glp_exact(lp, &parm);
+    rc = exact(lp, parm);
   }
   m.lp_s += seconds_since(t0);
   ++m.lp_solves;
@@ -349,7 +357,7 @@ int evaluate_basis(Model& m, const Accepted& a, double h, double h_open) {
   for (size_t i = 1; i < a.row_stat.size(); ++i) glp_set_row_stat(lp, static_cast<int>(i), a.row_stat[i]);
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_stat(lp, j, a.col_stat[j]);
   const auto t0 = cpu_now();
-  const int rc = glp_warm_up(lp);
+  const int rc = prd::glpk_guarded([&] { return glp_warm_up(lp); });
   m.lp_s += seconds_since(t0);
   ++m.basis_evaluations;
   return rc;
@@ -393,10 +401,10 @@ bool friction_feasible(SlidingLp& S, const FrictionProblem& p, double mu) {
   parm.it_lim = 1000 + 50 * (glp_get_num_rows(lp) + p.ncols);
   if (S.fresh) glp_std_basis(lp), S.fresh = false;
   ++S.solves;
-  int rc = glp_simplex(lp, &parm);
+  int rc = simplex(lp, parm);
   if (rc != 0) {  // a stalled warm start: once more from the standard basis
     glp_std_basis(lp);
-    rc = glp_simplex(lp, &parm);
+    rc = simplex(lp, parm);
   }
   return rc == 0 && glp_get_status(lp) == GLP_OPT;
 }

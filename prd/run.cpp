@@ -52,8 +52,6 @@ PrdCheck prd_check(const Case& c, double contact_tolerance) {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 // The run loop's state: the LP model, and where the walk along d stands. The record of
 // configuration d_k is completed by the LP solved on it (with the increment to d_{k+1}): its
 // duals are the forces in equilibrium on d_k, and a bounded optimum is what makes d_k stable.
@@ -95,10 +93,12 @@ struct Walk {
   StepRecord rec;                        // cur's record, completed when cur is accepted
   double h_in = 0;        // the move that led to cur
   double h_plan = 0;      // the step the next LP is solved for
-  double seen = kInf;     // d where an event was seen, not yet located
-  double crossing = kInf;  // where the previous basis's forces were estimated to reach 0
-  double arrived_closing = -1;  // the move to cur ended where a corner closed: located within this
-  long passing = -1;            // the corner the move to cur was to take past its predicted opening
+  // Bracketing an event: the d where it was seen, not yet located (nothing: moving along the
+  // path, no event pending).
+  std::optional<double> seen;
+  std::optional<double> crossing;         // where the previous basis's forces were estimated to reach 0, m
+  std::optional<double> arrived_closing;  // the move to cur ended where a corner closed: located within this, m
+  std::optional<size_t> passing;          // the corner the move to cur was to take past its predicted opening
   std::vector<char> ignored;    // corners left out of the predictions (above)
   std::vector<double> gap, rate;  // cur's corner gaps and their rates, from its LP
 
@@ -136,10 +136,12 @@ struct Walk {
   // the estimated crossing while it lies ahead, else to halve the bracket; once the bracket is
   // within the tolerance, to its end.
   double toward_event(double d) const {
-    const double left = seen - d;
+    const double left = *seen - d;
     if (left <= tol_ev) return left;
-    const double x = crossing - d;
-    if (x > 0 && x < left) return std::min(land(x), left - tol_ev / 2);
+    if (crossing) {
+      const double x = *crossing - d;
+      if (x > 0 && x < left) return std::min(land(x), left - tol_ev / 2);
+    }
     return left / 2;
   }
 };
@@ -191,10 +193,10 @@ bool event_behind(Walk& w, const Solved& sv) {
   for (size_t e = 0; e < w.m.ends.size(); ++e) here.closed[e] = w.m.ends[e].closed;
   const std::optional<double> x = basis_crossing(w.m, p, w.cur.d - p.d, w.tol_ev);
   set_closed(w.m, here.closed);
-  w.crossing = x ? p.d + *x : kInf;
-  if (x && !std::isfinite(*x) && w.arrived_closing >= 0) {
+  w.crossing = x ? std::optional<double>(p.d + *x) : std::nullopt;
+  if (x && !std::isfinite(*x) && w.arrived_closing) {
     back = false;
-    w.h_in = w.arrived_closing;
+    w.h_in = *w.arrived_closing;
     // This configuration's own basis back in the LP, for the stages that read it.
     if (evaluate_basis(w.m, here, sv.h, sv.h_open) != 0) throw std::runtime_error("GLPK could not restore the step's basis");
   }
@@ -218,7 +220,7 @@ void go_back(Walk& w) {
   w.cur.index = p.index + 1;
   w.rec = configuration_record(w.m, w.cur.index, w.cur.d);
   w.h_plan = w.toward_event(w.cur.d);
-  w.arrived_closing = -1;
+  w.arrived_closing.reset();
 }
 
 // Stage "collapse": the LP on cur is unbounded; its mechanism is the collapse.
@@ -238,8 +240,8 @@ void accept(Walk& w, const Solved& sv, RunResult& r) {
   // that reached 0 without changing the mechanism (a statically indeterminate part's dual
   // forces are one admissible state of many): it is left out of the predictions from here on,
   // and should it open after all, the LP sees it.
-  if (w.passing >= 0 && m.ends[w.passing].closed && sv.opened.empty() && !w.ignored[w.passing]) w.ignored[w.passing] = 1;
-  w.passing = -1;
+  if (w.passing && m.ends[*w.passing].closed && sv.opened.empty() && !w.ignored[*w.passing]) w.ignored[*w.passing] = 1;
+  w.passing.reset();
   read_forces(m, w.rec);
   record_held(m, w.rec);
   lp_check_fields(m, sv.h, w.rec);
@@ -250,10 +252,10 @@ void accept(Walk& w, const Solved& sv, RunResult& r) {
   r.stable_steps = w.cur.index;
   // An event seen on the way here that did not recur at the same d (the way there differed)
   // is over.
-  if (w.seen - w.cur.d <= 1e-9 * w.h_ref) w.seen = kInf;
+  if (w.seen && *w.seen - w.cur.d <= 1e-9 * w.h_ref) w.seen.reset();
   if (!sv.opened.empty()) {
     r.events->push_back(make_event(m, EventKind::open, w.cur.d, w.h_in, sv.opened));
-    w.seen = kInf;
+    w.seen.reset();
   }
   Accepted& cur = w.cur;
   cur.cen = m.cen;
@@ -312,7 +314,7 @@ Step plan(Walk& w, const Solved& sv) {
   Step st;
   st.h = sv.h;
   if (!w.s.adaptive) return st;
-  if (std::isfinite(w.seen)) {
+  if (w.seen) {
     st.h = std::min(sv.h, w.toward_event(w.cur.d));
   } else if (sv.closing.empty()) {
     st.planned = plan_on_trend(w, sv);
@@ -325,11 +327,11 @@ Step plan(Walk& w, const Solved& sv) {
     st.shut = first_closing(w.m, Path{w.cur.U, w.cur.dU}, w.gap, w.rate, st.h);
     if (std::isfinite(st.shut.at)) st.h = st.shut.at;
   }
-  if (st.planned.to_open <= st.h) w.passing = st.planned.corner;
+  if (st.planned.to_open <= st.h && st.planned.corner >= 0) w.passing = static_cast<size_t>(st.planned.corner);
   // The next LP's step: inside a bracket, the next move in it; else as long as allowed, the
   // predictions cutting the move short.
   w.h_plan = w.h_max;
-  if (std::isfinite(w.seen) && w.seen - w.cur.d - st.h > 1e-9 * w.h_ref) w.h_plan = w.toward_event(w.cur.d + st.h);
+  if (w.seen && *w.seen - w.cur.d - st.h > 1e-9 * w.h_ref) w.h_plan = w.toward_event(w.cur.d + st.h);
   return st;
 }
 
@@ -357,7 +359,7 @@ void take(Walk& w, const Solved& sv, const Step& st, RunResult& r) {
     r.events->push_back(make_event(m, EventKind::close, w.cur.d + st.h, exact ? st.shut.within : st.h, shut_now));
   }
   w.h_in = st.h;
-  w.arrived_closing = std::isfinite(st.shut.at) ? st.shut.within : -1;
+  w.arrived_closing = std::isfinite(st.shut.at) ? std::optional<double>(st.shut.within) : std::nullopt;
   w.cur.index += 1;
   w.cur.d = w.s.adaptive ? w.prev->d + st.h : w.d0 + w.cur.index * w.h_ref;
   w.rec = configuration_record(m, w.cur.index, w.cur.d);
@@ -402,7 +404,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   const auto t_start = cpu_now();
   double io_s = 0;
   RunResult r;
-  r.method = "prd";
+  r.method = method_name(Method::prd);
   r.case_name = c.name;
   Walk w(c, s);
   r.capacity = w.d0;  // a start that is unstable as it stands: no stable configuration beyond it

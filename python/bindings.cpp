@@ -24,7 +24,7 @@
 #include "model/case.hpp"
 #include "model/io.hpp"
 #include "model/results.hpp"
-#include "runs/method.hpp"
+#include "model/method.hpp"
 #include "runs/run.hpp"
 #include "sweep/sweep.hpp"
 #include "validate/validate.hpp"
@@ -226,10 +226,9 @@ py::object compare_two(const Case& c, const PyResult& a, const PyResult& b, cons
   std::optional<Tolerances> tol;
   if (!tolerances.empty()) tol = parse_tolerances(tolerances, source);
   const auto label = [](const RunResult& r) {
-    if (r.method == "dem" && r.settings.contains("friction_angle") && r.settings["friction_angle"].is_number())
+    if (known_method(r) == Method::dem && r.settings.contains("friction_angle") && r.settings["friction_angle"].is_number())
       return "DEM phi=" + number_text(r.settings["friction_angle"].get<double>());
-    const std::optional<Method> m = parse_method(r.method);
-    return std::string(m ? method_label(*m) : r.method.c_str());
+    return method_label(r);
   };
   std::string la = label(a.run), lb = label(b.run);
   if (la == lb) la += " a", lb += " b";

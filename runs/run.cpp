@@ -87,7 +87,7 @@ RunResult run_case_in_study(const Case& c, Method m, const RunOutput& out) {
 }
 
 std::optional<PrdOnRun> prd_on_run(const Case& c, const RunResult& run) {
-  if (run.method != "dem" || !(located(run.status) || run.status == RunStatus::undecided)) return std::nullopt;
+  if (known_method(run) != Method::dem || !(located(run.status) || run.status == RunStatus::undecided)) return std::nullopt;
   const StepRecord* rec = last_equilibrium(run, 0.9 * run.capacity);
   if (!rec) return std::nullopt;
   const auto number = [&](const char* key, double fallback) {

@@ -13,7 +13,7 @@
 #include "model/case.hpp"
 #include "model/results.hpp"
 #include "prd/prd.hpp"
-#include "runs/method.hpp"
+#include "model/method.hpp"
 
 namespace masonry {
 

@@ -56,7 +56,7 @@ std::string svg_tornado(const SweepPlan& p, const MethodSensitivity& m) {
   xmax *= 1.08;
   const Plot plot{left, top, W - left - right, ph, 0, xmax, 0, 1};
   std::ostringstream o;
-  o << svg_open(W, H) << title(left, 22, std::string(m.method == "prd" ? "PRD" : "DEM") + ": capacity over each option's range, one at a time")
+  o << svg_open(W, H) << title(left, 22, std::string(method_label(m.method)) + ": capacity over each option's range, one at a time")
     << "<text x=\"" << px(left) << "\" y=\"38\" font-size=\"11\" fill=\"#555\">"
     << xml_escape(p.sample ? "the other options at the base point (vertical line: its capacity); bar ends labelled with x"
                            : "the other options at their middle values (vertical line: the capacity there); bar ends labelled with x")
@@ -98,7 +98,7 @@ std::string svg_histogram(const SweepPlan& p, const SweepTable& t, const MethodS
   const double ymax = cmax * 1.12 + 0.5;
   const Plot plot{left, top, W - left - right, ph, lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo), 0, ymax};
   std::ostringstream o;
-  o << svg_open(W, H) << title(left, 22, std::string(m.method == "prd" ? "PRD" : "DEM") + ": the " + std::to_string(caps.size()) + " sampled capacities")
+  o << svg_open(W, H) << title(left, 22, std::string(method_label(m.method)) + ": the " + std::to_string(caps.size()) + " sampled capacities")
     << svg_axes(plot, linear_ticks(plot.x0, plot.x1, 8, 4), linear_ticks(0, ymax, 6, 4), "capacity: last stable d (m)", "samples");
   for (int b = 0; b < nb; ++b) {
     if (!count[b]) continue;

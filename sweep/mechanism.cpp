@@ -35,7 +35,7 @@ std::string hinges_at_collapse(const Case& c, const RunResult& r) {
     // wide anywhere).
     const std::vector<const StepRecord*> stable = stable_records(r);
     if (stable.empty()) return "";
-    for (const Hinge& h : hinges_of(c, r, *stable.back(), r.method == "dem" ? settled_gap(r) : 0.0)) labels.push_back(h.label);
+    for (const Hinge& h : hinges_of(c, r, *stable.back(), known_method(r) == Method::dem ? settled_gap(r) : 0.0)) labels.push_back(h.label);
   }
   std::string s;
   for (const std::string& l : labels) s += (s.empty() ? "" : " ") + l;

@@ -38,7 +38,7 @@ bool friction_x(const SweepSummary& s) { return s.x == "dem.friction_angle"; }
 const SweepRow* curve_prd(const SweepPlan& p, const SweepTable& t, const SweepCurve& c) {
   int prd = -1;
   for (int i : c.runs) {
-    if (p.runs[i].method != "dem" || p.runs[i].prd < 0 || (prd >= 0 && p.runs[i].prd != prd)) return nullptr;
+    if (p.runs[i].method != Method::dem || p.runs[i].prd < 0 || (prd >= 0 && p.runs[i].prd != prd)) return nullptr;
     prd = p.runs[i].prd;
   }
   const SweepRow* r = row_at(t, prd);
@@ -68,7 +68,7 @@ const char* point_name(SweepPoint k) {
 
 bool any_dem(const SweepPlan& p) {
   for (const SweepRun& r : p.runs)
-    if (r.method == "dem") return true;
+    if (r.method == Method::dem) return true;
   return false;
 }
 
@@ -84,7 +84,7 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
   Content c;
   c.title = "Sweep: " + p.name;
   int prd = 0;
-  for (const SweepRun& r : p.runs) prd += r.method == "prd";
+  for (const SweepRun& r : p.runs) prd += r.method == Method::prd;
   c.lead = "Case " + p.base.name + " (sweep file " + p.source + ", plan " + p.hash + "): " + std::to_string(p.runs.size()) + " runs (" +
            std::to_string(prd) + " PRD, " + std::to_string(p.runs.size() - prd) + " DEM), " + std::to_string(s.finished) + " finished, " +
            std::to_string(s.errors) + " without a located capacity (failed, or a DEM hold undecided). Capacity: the last stable d (m); difference: (DEM - PRD) / PRD; tolerance " +
@@ -110,14 +110,14 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
   for (const std::string& k : p.keys) c.runs.head.push_back(k);
   for (const char* h : {"capacity (m)", "stopped", "difference from PRD", "PRD: sliding below (deg)", "time (s)", "message"}) c.runs.head.push_back(h);
   for (const SweepRun& run : p.runs) {
-    std::vector<std::string> r = {std::to_string(run.index), run.method};
+    std::vector<std::string> r = {std::to_string(run.index), method_name(run.method)};
     if (p.sample) r.push_back(point_text(run));
     for (const json& v : run.values) r.push_back(v.is_null() ? "-" : shown(v));
     const SweepRow* row = row_at(t, run.index);
     if (!row) {
       for (const char* x : {"-", "not run", "-", "-", "-", ""}) r.push_back(x);
     } else {
-      const auto d = run.method == "dem" ? diff_prd(*row, row_at(t, run.prd)) : std::nullopt;
+      const auto d = run.method == Method::dem ? diff_prd(*row, row_at(t, run.prd)) : std::nullopt;
       r.push_back(row->status == RunStatus::error ? "-" : fmt::g(row->capacity, 6));
       r.push_back(status_name(row->status));
       r.push_back(d ? pct(*d) : "-");
@@ -141,7 +141,8 @@ ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s)
   j["spec"] = p.source;
   j["case"] = p.base.name;
   j["plan"] = p.hash;
-  j["methods"] = p.methods;
+  j["methods"] = ojson::array();
+  for (Method m : p.methods) j["methods"].push_back(method_name(m));
   j["keys"] = p.keys;
   j["tolerance"] = p.tolerance;
   j["complete"] = s.finished == static_cast<int>(p.runs.size());
@@ -153,10 +154,10 @@ ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s)
     ojson params = ojson::object();
     for (size_t k = 0; k < p.keys.size(); ++k)
       if (!run.values[k].is_null()) params[p.keys[k]] = ojson::parse(run.values[k].dump());
-    const auto d = run.method == "dem" ? diff_prd(*row, row_at(t, run.prd)) : std::nullopt;
+    const auto d = run.method == Method::dem ? diff_prd(*row, row_at(t, run.prd)) : std::nullopt;
     runs.push_back({{"run", run.index},
                     {"id", run.id},
-                    {"method", run.method},
+                    {"method", method_name(run.method)},
                     {"point", point_name(run.point)},
                     {"sample", run.sample >= 0 ? ojson(run.sample) : ojson(nullptr)},
                     {"parameters", params},
@@ -280,8 +281,6 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
 
 namespace {
 
-std::string method_name(const std::string& m) { return m == "prd" ? "PRD" : "DEM"; }
-
 // How the capacity runs along a one-at-a-time line.
 std::string trend(const std::vector<double>& c) {
   if (c.size() < 2) return "-";
@@ -329,7 +328,7 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
   d.heading(2, {"Sensitivity of the capacity"});
   d.paragraph({design_text(p) + " The numbers are also in ", Cell("sensitivity.json", CellStyle::code), "."});
   for (const MethodSensitivity& m : sens.methods) {
-    const std::string M = method_name(m.method);
+    const std::string M = method_label(m.method);
     d.heading(3, {M});
     if (sens.sampled) {
       Table pc;
@@ -384,9 +383,9 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
                    "; runs with capacity 0 have no logarithm and are left out of it" +
                    (sens.sampled ? " (the Spearman rank correlation of x and the capacity, over every located sample, keeps them)" : "") +
                    ". One at a time: the least and largest capacity along the option's line, and the x where they occur."});
-    if (const std::string svg = svg_tornado(p, m); !svg.empty()) d.figure("figures/tornado-" + m.method + ".svg", M + ": one-at-a-time ranges", svg);
+    if (const std::string svg = svg_tornado(p, m); !svg.empty()) d.figure("figures/tornado-" + std::string(method_name(m.method)) + ".svg", M + ": one-at-a-time ranges", svg);
     if (const std::string svg = svg_histogram(p, t, m); !svg.empty())
-      d.figure("figures/histogram-" + m.method + ".svg", M + ": the sampled capacities", svg);
+      d.figure("figures/histogram-" + std::string(method_name(m.method)) + ".svg", M + ": the sampled capacities", svg);
     if (!m.mechanisms.empty()) {
       d.paragraph({"Collapse mechanisms: the " + std::string(sens.sampled ? "samples" : "runs") +
                    " grouped by their hinges at collapse (PRD: the corners its collapse mechanism opens, a hinge named by the corner it turns "
@@ -472,8 +471,8 @@ void write_sweep_outputs(const std::string& dir, const SweepPlan& p, const Sweep
   write_file_atomic(dir + "/sensitivity.json", sensitivity_json(p, sens).dump(1) + "\n");
   if (!s.x.empty() && !s.curves.empty()) write_file_atomic(dir + "/figures/capacity.svg", svg_sweep(p, t, s));
   for (const MethodSensitivity& m : sens.methods) {
-    if (const std::string svg = svg_tornado(p, m); !svg.empty()) write_file_atomic(dir + "/figures/tornado-" + m.method + ".svg", svg);
-    if (const std::string svg = svg_histogram(p, t, m); !svg.empty()) write_file_atomic(dir + "/figures/histogram-" + m.method + ".svg", svg);
+    if (const std::string svg = svg_tornado(p, m); !svg.empty()) write_file_atomic(dir + "/figures/tornado-" + method_name(m.method) + ".svg", svg);
+    if (const std::string svg = svg_histogram(p, t, m); !svg.empty()) write_file_atomic(dir + "/figures/histogram-" + method_name(m.method) + ".svg", svg);
   }
   if (const std::string svg = svg_prd_dem(p, sens); !svg.empty()) write_file_atomic(dir + "/figures/prd-dem.svg", svg);
   write_file_atomic(dir + "/report.md", sweep_markdown(p, t, s, command));

@@ -23,7 +23,7 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run, bool keep) {
   row.method = run.method;
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    const Method m = run.method == "prd" ? Method::prd : Method::dem;
+    const Method m = run.method;
     const Case own = case_of_run(p, run);
     // PRD runs carry the sliding check, so the report can set its prediction beside the DEM
     // (unless the sweep file's "set" turns it off).
@@ -82,7 +82,7 @@ Recorder::Recorder(Prepared& pr, const SweepOptions& o, int workers, const std::
   if (!file_) throw SweepError(pr.csv_path + ": cannot append");
   if (o_.quiet) return;
   int prd = 0;
-  for (const SweepRun& r : pr.plan.runs) prd += r.method == "prd";
+  for (const SweepRun& r : pr.plan.runs) prd += r.method == Method::prd;
   std::fprintf(stderr, "sweep: %s: %zu runs (%d PRD, %zu DEM); %zu in %s already, %zu to run on %d %s\n", pr.plan.name.c_str(),
                pr.plan.runs.size(), prd, pr.plan.runs.size() - prd, pr.plan.runs.size() - pr.todo.size(), pr.csv_path.c_str(),
                pr.todo.size(), workers, where.c_str());
@@ -111,7 +111,7 @@ void Recorder::operator()(const SweepRow& r) {
   char b[96];
   if (r.status == RunStatus::error) std::snprintf(b, sizeof b, "error after %.3g s", r.time_s);
   else std::snprintf(b, sizeof b, "%s, capacity %.6g m in %.3g s", status_name(r.status), r.capacity, r.time_s);
-  std::cerr << progress_.line(done_, "run " + std::to_string(r.index) + " " + r.method + " (" + label + "): " + b +
+  std::cerr << progress_.line(done_, "run " + std::to_string(r.index) + " " + method_name(r.method) + " (" + label + "): " + b +
                                          (r.status == RunStatus::error ? ": " + r.message : std::string()))
             << "\n" << std::flush;
 }
@@ -137,7 +137,7 @@ void execute_runs(const SweepPlan& p, const std::vector<int>& todo, int jobs, bo
   // GLPK keeps one environment per thread (thread-local in Debian's build), and a pool thread's
   // would be left behind when the thread ends: PRD runs, a few LPs each, stay on this thread.
   for (int i : todo) {
-    if (p.runs[i].method != "prd") {
+    if (p.runs[i].method != Method::prd) {
       dem.push_back(i);
       continue;
     }

@@ -214,7 +214,7 @@ void one_at_a_time(const SweepPlan& p, const SweepTable& t, const std::vector<in
   }
 }
 
-MethodSensitivity method_sensitivity(const SweepPlan& p, const SweepTable& t, const std::string& method) {
+MethodSensitivity method_sensitivity(const SweepPlan& p, const SweepTable& t, Method method) {
   MethodSensitivity m;
   m.method = method;
   std::vector<int> runs, counted;
@@ -274,7 +274,7 @@ MethodSensitivity method_sensitivity(const SweepPlan& p, const SweepTable& t, co
   for (size_t k = 0; k < p.keys.size(); ++k) {
     ParameterSensitivity ps;
     ps.key = p.keys[k];
-    ps.ignored = method == "prd" && sweep_detail::is_dem_option(ps.key);
+    ps.ignored = method == Method::prd && sweep_detail::is_dem_option(ps.key);
     if (!ps.ignored) one_at_a_time(p, t, runs, k, ps);
     m.parameters.push_back(std::move(ps));
   }
@@ -318,9 +318,9 @@ ojson groups_json(const std::vector<MechanismShare>& groups, const char* name) {
 SweepSensitivity sensitivity(const SweepPlan& p, const SweepTable& t) {
   SweepSensitivity s;
   s.sampled = p.sample.has_value();
-  for (const std::string& m : p.methods) s.methods.push_back(method_sensitivity(p, t, m));
+  for (Method m : p.methods) s.methods.push_back(method_sensitivity(p, t, m));
   for (const SweepRun& r : p.runs) {
-    if (r.method != "dem") continue;
+    if (r.method != Method::dem) continue;
     const SweepRow* dem = located_row(t, r.index);
     const SweepRow* prd = located_row(t, r.prd);
     if (dem && prd) s.pairs.push_back({r.index, r.prd, r.sample, prd->capacity, dem->capacity});
@@ -403,7 +403,7 @@ ojson sensitivity_json(const SweepPlan& p, const SweepSensitivity& s) {
       params[ps.key] = q;
     }
     o["parameters"] = params;
-    methods[m.method] = o;
+    methods[method_name(m.method)] = o;
   }
   j["methods"] = methods;
   ojson pairs = ojson::array();

@@ -206,13 +206,14 @@ SweepSpec parse_sweep(const std::string& text, const std::string& source) {
     const ojson& m = doc["methods"];
     if (!m.is_array() || m.empty()) r.fail("sweep", "field 'methods' must be a non-empty list of \"prd\", \"dem\"");
     for (const ojson& x : m) {
-      if (!x.is_string() || (x != "prd" && x != "dem")) r.fail("sweep", "field 'methods': " + x.dump() + " is not \"prd\" or \"dem\"");
-      for (const std::string& seen : s.methods)
-        if (seen == x.get<std::string>()) r.fail("sweep", "field 'methods': " + x.dump() + " is listed twice");
-      s.methods.push_back(x.get<std::string>());
+      const std::optional<Method> method = x.is_string() ? parse_method(x.get<std::string>()) : std::nullopt;
+      if (!method) r.fail("sweep", "field 'methods': " + x.dump() + " is not \"prd\" or \"dem\"");
+      if (std::find(s.methods.begin(), s.methods.end(), *method) != s.methods.end())
+        r.fail("sweep", "field 'methods': " + x.dump() + " is listed twice");
+      s.methods.push_back(*method);
     }
   } else {
-    s.methods = {"prd", "dem"};
+    s.methods = {Method::prd, Method::dem};
   }
   if (doc.contains("sample")) {
     if (doc.contains("vary")) r.fail("sweep", "a sweep has 'vary' (a grid) or 'sample' (a Latin hypercube), not both");
@@ -499,19 +500,15 @@ SweepPlan plan_sweep(const SweepSpec& spec, const Case& c) {
   }
   const std::vector<DesignPoint> points = spec.sample ? sampled_points(r, *spec.sample, p.base_values, integer) : grid_points(r, spec);
 
-  const auto has = [&](const char* m) {
-    for (const std::string& x : spec.methods)
-      if (x == m) return true;
-    return false;
-  };
-  const auto add = [&](const std::string& method, std::vector<json> values, const DesignPoint& d) {
+  const auto has = [&](Method m) { return std::find(spec.methods.begin(), spec.methods.end(), m) != spec.methods.end(); };
+  const auto add = [&](Method method, std::vector<json> values, const DesignPoint& d) {
     SweepRun run;
     run.index = static_cast<int>(p.runs.size());
     run.method = method;
     run.point = d.point;
     run.sample = d.sample;
     run.line = d.line;
-    std::string idtext = base_text + "\n" + method + "\n";
+    std::string idtext = base_text + "\n" + method_name(method) + "\n";
     for (size_t k = 0; k < p.keys.size(); ++k) idtext += p.keys[k] + "=" + (values[k].is_null() ? "-" : values[k].dump()) + "\n";
     if (d.point == SweepPoint::sample) idtext += "sample=" + std::to_string(d.sample) + "\n";
     run.id = hex16(fnv1a(idtext));
@@ -529,26 +526,26 @@ SweepPlan plan_sweep(const SweepSpec& spec, const Case& c) {
       if (is_dem_option(p.keys[k])) out[k] = nullptr;
     return json(out).dump();
   };
-  if (has("prd"))
+  if (has(Method::prd))
     for (const DesignPoint& d : points) {
       const std::string key = prd_key(d);
       if (prd_of.count(key)) continue;
       std::vector<json> pv = d.values;
       for (size_t k = 0; k < pv.size(); ++k)
         if (is_dem_option(p.keys[k])) pv[k] = nullptr;
-      prd_of[key] = add("prd", pv, d);
+      prd_of[key] = add(Method::prd, pv, d);
     }
-  if (has("dem"))
+  if (has(Method::dem))
     for (const DesignPoint& d : points) {
-      const int i = add("dem", d.values, d);
+      const int i = add(Method::dem, d.values, d);
       auto it = prd_of.find(prd_key(d));
       if (it != prd_of.end()) p.runs[i].prd = it->second;
     }
-  if (!has("dem"))
+  if (!has(Method::dem))
     for (const std::string& key : p.keys)
       if (is_dem_option(key)) p.prd_ignores.push_back(key);
   std::string all = "masonry-sweep/1\n" + base_text;
-  for (const SweepRun& run : p.runs) all += run.method + " " + run.id + "\n";
+  for (const SweepRun& run : p.runs) all += std::string(method_name(run.method)) + " " + run.id + "\n";
   p.hash = hex16(fnv1a(all));
   return p;
 }
@@ -586,7 +583,7 @@ std::string prd_ignores_note(const SweepPlan& p) {
   std::string keys;
   for (const std::string& k : p.prd_ignores) keys += (keys.empty() ? "" : ", ") + k;
   int prd = 0;
-  for (const SweepRun& r : p.runs) prd += r.method == "prd";
+  for (const SweepRun& r : p.runs) prd += r.method == Method::prd;
   return "PRD ignores " + keys + " (DEM option" + (p.prd_ignores.size() > 1 ? "s" : "") + "): this PRD-only sweep runs " + std::to_string(prd) +
          " PRD run" + (prd == 1 ? "" : "s") + " whatever " + (p.prd_ignores.size() > 1 ? "their values" : "its value") +
          "; add \"dem\" to 'methods' to run the DEM over " + (p.prd_ignores.size() > 1 ? "them" : "it") + ".";

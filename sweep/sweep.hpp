@@ -59,7 +59,7 @@ struct SweepSpec {
   std::string case_ref;     // as written: a path (ending in .json) or a standard case name; "" for a generator
   std::string generator;    // a generator call {"generator": NAME, "parameters": {...}}: its name
   nlohmann::json parameters = nlohmann::json::object();  // and its parameters
-  std::vector<std::string> methods;  // "prd", "dem" (at least one)
+  std::vector<Method> methods;  // at least one
   std::vector<SweepAxis> vary;       // a grid: at least one (none with `sample`)
   std::optional<SweepSample> sample;
   std::vector<std::pair<std::string, nlohmann::json>> set;  // options fixed for every run
@@ -94,7 +94,7 @@ enum class SweepPoint { grid, base, one_at_a_time, sample };
 
 struct SweepRun {
   int index = 0;
-  std::string method;                  // "prd" or "dem"
+  Method method = Method::prd;
   std::vector<nlohmann::json> values;  // per plan key; null where the option does not apply
   std::string id;                      // 16 hex digits: the case, the method, the values (and the sample)
   int prd = -1;                        // DEM run: the PRD run with the same non-DEM values
@@ -110,7 +110,7 @@ struct SweepPlan {
   std::string generator;             // a generator call: its name ("" otherwise)
   nlohmann::json parameters;         // and its parameters with the "set" ones (generator.NAME)
   std::vector<std::pair<std::string, nlohmann::json>> options;  // "set"'s case options, applied after the generator
-  std::vector<std::string> methods;
+  std::vector<Method> methods;
   std::vector<std::string> keys;  // varied or sampled options, in the spec's order
   std::vector<nlohmann::json> base_values;  // per key: its value in the base case (null: none)
   std::optional<SweepSample> sample;  // a sampled sweep
@@ -149,7 +149,7 @@ std::string value_text(const nlohmann::json& v);
 struct SweepRow {
   int index = -1;
   std::string id;
-  std::string method;
+  Method method = Method::prd;
   // collapse, max_steps, undecided (a DEM hold that neither settled nor ran away: the capacity
   // is the last equilibrium, not a located collapse) or error; never running.
   RunStatus status = RunStatus::error;
@@ -248,7 +248,7 @@ struct NearestSample {
   double capacity = 0;
 };
 struct MethodSensitivity {
-  std::string method;
+  Method method = Method::prd;
   int counted = 0;  // the rows it is computed from: the samples (sampled), every run (grid)
   int located = 0, zero = 0;  // of them: with a located capacity; of those, capacity 0
   // Sampled: the 5th, 50th and 95th percentiles of the samples' capacities (linear

@@ -84,7 +84,7 @@ const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.
 using sweep_detail::row_at;
 
 json row_to_json(const SweepRow& r) {
-  json j = {{"run", r.index}, {"id", r.id}, {"method", r.method}, {"stopped", status_name(r.status)},
+  json j = {{"run", r.index}, {"id", r.id}, {"method", method_name(r.method)}, {"stopped", status_name(r.status)},
             {"capacity", r.capacity}, {"time_s", r.time_s}, {"message", r.message}};
   if (r.required_friction_angle) j["required_friction_angle"] = *r.required_friction_angle;
   if (!r.hinges.empty()) j["hinges"] = r.hinges;
@@ -96,7 +96,10 @@ SweepRow row_from_json(const json& j) {
   SweepRow r;
   r.index = j.at("run").get<int>();
   r.id = j.at("id").get<std::string>();
-  r.method = j.at("method").get<std::string>();
+  const std::string method = j.at("method").get<std::string>();
+  const std::optional<Method> m = parse_method(method);
+  if (!m) throw std::runtime_error("sweep row: unknown \"method\" '" + method + "'");
+  r.method = *m;
   const std::string status = j.at("stopped").get<std::string>();
   const std::optional<RunStatus> st = parse_status(status);
   if (!st || *st == RunStatus::running) throw std::runtime_error("sweep row: unknown \"stopped\" '" + status + "'");
@@ -131,10 +134,10 @@ std::string sweep_csv_header(const SweepPlan& p) {
 
 std::string sweep_csv_line(const SweepPlan& p, const SweepRow& r, const SweepTable& t) {
   const SweepRun& run = p.runs.at(r.index);
-  std::vector<std::string> cells = {std::to_string(r.index), r.id, r.method};
+  std::vector<std::string> cells = {std::to_string(r.index), r.id, method_name(r.method)};
   if (p.sample) cells.push_back(point_text(run));
   for (const json& v : run.values) cells.push_back(v.is_null() ? std::string() : value_text(v));
-  const std::optional<double> diff = r.method == "dem" ? diff_prd(r, row_at(t, run.prd)) : std::nullopt;
+  const std::optional<double> diff = r.method == Method::dem ? diff_prd(r, row_at(t, run.prd)) : std::nullopt;
   cells.push_back(r.status == RunStatus::error ? std::string() : num(r.capacity));
   cells.push_back(status_name(r.status));
   cells.push_back(num(r.time_s));
@@ -182,7 +185,7 @@ SweepTable read_sweep_csv(const SweepPlan& p, const std::string& text, const std
                        " is not a run of this sweep (the sweep file or the case changed since): use --restart to discard the table, or another --out");
     const SweepRun& run = p.runs[it->second];
     // A line whose fields do not all read back is incomplete: its run is done again.
-    bool ok = f[2] == run.method && (h == 3 || f[3] == point_text(run));
+    bool ok = f[2] == method_name(run.method) && (h == 3 || f[3] == point_text(run));
     for (size_t k = 0; k < nk && ok; ++k) ok = f[h + k] == (run.values[k].is_null() ? "" : value_text(run.values[k]));
     SweepRow r;
     r.index = run.index;
@@ -219,8 +222,8 @@ SweepSummary summarize(const SweepPlan& p, const SweepTable& t) {
   // The curves are the DEM runs, or the PRD runs in a sweep without DEM; x is the friction angle
   // when it varies, else the first option whose values in those runs are all numbers.
   bool has_dem = false;
-  for (const SweepRun& r : p.runs) has_dem = has_dem || r.method == "dem";
-  const std::string method = has_dem ? "dem" : "prd";
+  for (const SweepRun& r : p.runs) has_dem = has_dem || r.method == Method::dem;
+  const Method method = has_dem ? Method::dem : Method::prd;
   int xk = -1;
   for (size_t k = 0; k < p.keys.size() && xk < 0; ++k)
     if (p.keys[k] == "dem.friction_angle" && has_dem) xk = int(k);

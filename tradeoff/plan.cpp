@@ -135,7 +135,8 @@ std::vector<CaseOption> parse_options(const ojson& j, const std::string& method,
   return out;
 }
 
-MethodPlan parse_method(const ojson& j, const std::string& method, const std::string& source) {
+MethodPlan parse_method_plan(const ojson& j, Method which, const std::string& source) {
+  const std::string method = method_name(which);
   if (!j.is_object()) fail(source, method, "must be an object");
   MethodPlan m;
   for (auto it = j.begin(); it != j.end(); ++it) {
@@ -179,7 +180,7 @@ MethodPlan parse_method(const ojson& j, const std::string& method, const std::st
           fail(source, w + ".label", "must be a non-empty string");
         if (!e.contains("options")) fail(source, w + ".options", "missing");
         Setting s;
-        s.method = method;
+        s.method = which;
         s.parameter = "combined";
         s.label = e["label"].get<std::string>();
         s.options = parse_options(e["options"], method, source, w + ".options");
@@ -252,8 +253,8 @@ Plan parse_plan(const std::string& text, const std::string& source) {
       if (it.value() != kFormat) fail(source, "format", std::string("must be \"") + kFormat + "\"");
     } else if (k == "comment") {
       continue;
-    } else if (k == "prd" || k == "dem") {
-      p.methods[k] = parse_method(it.value(), k, source);
+    } else if (const std::optional<Method> m = parse_method(k)) {
+      p.methods[*m] = parse_method_plan(it.value(), *m, source);
     } else {
       fail(source, k, "unknown field (expected format, comment, prd, dem)");
     }
@@ -273,8 +274,8 @@ Plan default_plan(bool quick) { return parse_plan(quick ? kQuickPlan : kFullPlan
 ojson plan_to_json(const Plan& p) {
   ojson j;
   j["format"] = kFormat;
-  for (const char* name : {"prd", "dem"}) {
-    const auto it = p.methods.find(name);
+  for (Method method : kMethods) {
+    const auto it = p.methods.find(method);
     if (it == p.methods.end()) continue;
     const MethodPlan& m = it->second;
     ojson o;
@@ -295,7 +296,7 @@ ojson plan_to_json(const Plan& p) {
       for (const CaseOption& x : s.options) e["options"][x.key] = to_ordered(x.value);
       o["combined"].push_back(e);
     }
-    j[name] = o;
+    j[method_name(method)] = o;
   }
   return j;
 }
@@ -320,8 +321,8 @@ CaseOption parse_assignment(const std::string& text, const std::string& what) {
   return o;
 }
 
-std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const std::vector<std::string>& methods,
-                                    const std::string& plan_source, const std::vector<std::string>& reused_references) {
+std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const std::vector<Method>& methods,
+                                    const std::string& plan_source, const std::vector<Method>& reused_references) {
   const json doc = json::parse(case_to_json(base));
   const double travel = base.motion.step * base.motion.max_steps;
   // Relative values to numbers, and the path length kept when only the step changes.
@@ -357,8 +358,9 @@ std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const st
   };
   std::vector<PlannedRun> runs;
   std::vector<std::string> seen;  // the cases already planned, as JSON text
-  for (const std::string& method : methods) {
-    const auto it = plan.methods.find(method);
+  for (const Method which : methods) {
+    const std::string method = method_name(which);
+    const auto it = plan.methods.find(which);
     if (it == plan.methods.end()) throw std::runtime_error(plan_source + ": " + method + ": the plan has no settings for this method");
     const MethodPlan& m = it->second;
     const auto add = [&](Setting s, const std::string& id_tail, bool reference, bool baseline, const std::string& where) {
@@ -372,7 +374,7 @@ std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const st
         throw std::runtime_error(plan_source + ": " + where + ": " + e.what());
       }
       // A reused reference is some finished run: its settings are not the planned ones.
-      const bool reused = reference && std::find(reused_references.begin(), reused_references.end(), method) != reused_references.end();
+      const bool reused = reference && std::find(reused_references.begin(), reused_references.end(), which) != reused_references.end();
       const std::string text = method + "\n" + case_to_json(p.c);
       if (!reused) {
         for (const std::string& t : seen)
@@ -392,15 +394,15 @@ std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const st
       p.repeat = m.repeat;
       runs.push_back(std::move(p));
     };
-    add({method, "reference", "reference", m.reference}, "reference", true, false, method + ".reference");
-    if (m.baseline) add({method, "baseline", "baseline", {}}, "baseline", false, true, method + ".baseline");
+    add({which, "reference", "reference", m.reference}, "reference", true, false, method + ".reference");
+    if (m.baseline) add({which, "baseline", "baseline", {}}, "baseline", false, true, method + ".baseline");
     for (const auto& [key, values] : m.vary)
       for (size_t i = 0; i < values.size(); ++i) {
         const json b = case_option(base, key);
         // A value equal to the case's own is the baseline.
         std::vector<CaseOption> one = resolve({{key, values[i]}}, method + ".vary");
         if (!b.is_null() && one.front().value == b) continue;
-        add({method, key, "", {{key, values[i]}}}, "", false, false, method + ".vary." + key + "[" + std::to_string(i) + "]");
+        add({which, key, "", {{key, values[i]}}}, "", false, false, method + ".vary." + key + "[" + std::to_string(i) + "]");
       }
     for (size_t i = 0; i < m.combined.size(); ++i)
       add(m.combined[i], "", false, false, method + ".combined[" + std::to_string(i) + "]");

@@ -57,22 +57,20 @@ std::string weight(double x) {
 // d x 1000, in mm or mrad (Tradeoff::d_unit).
 std::string mm(double m) { return fmt::mm(m, 1); }
 
-std::string method_name(const std::string& m) { return m == "prd" ? "PRD" : m == "dem" ? "DEM" : m; }
-
 std::string role(const Row& r) { return r.reference ? "reference" : r.baseline ? "baseline" : r.parameter == "combined" ? "combined" : "vary"; }
 
 // A point's error as the reader sees it.
 std::string err_text(ErrorKind k, double e) { return k == ErrorKind::capacity ? pct(e) : weight(e); }
 const char* kind_name(ErrorKind k) { return k == ErrorKind::capacity ? "capacity error" : "thrust error"; }
 
-std::vector<size_t> rows_of(const Tradeoff& t, const std::string& method) {
+std::vector<size_t> rows_of(const Tradeoff& t, Method method) {
   std::vector<size_t> out;
   for (size_t i = 0; i < t.rows.size(); ++i)
     if (t.rows[i].method == method) out.push_back(i);
   return out;
 }
 
-std::vector<Row> method_rows(const Tradeoff& t, const std::string& method) {
+std::vector<Row> method_rows(const Tradeoff& t, Method method) {
   std::vector<Row> out;
   for (size_t i : rows_of(t, method)) out.push_back(t.rows[i]);
   return out;
@@ -103,14 +101,14 @@ std::map<std::string, std::string> parameter_colors(const std::vector<Row>& rows
   return c;
 }
 
-Table method_table(const Tradeoff& t, const std::string& method) {
+Table method_table(const Tradeoff& t, Method method) {
   const std::vector<Row> rows = method_rows(t, method);
   const Front fc = front_of(rows, ErrorKind::capacity), ft = front_of(rows, ErrorKind::thrust);
   const auto on = [](const Front& f, size_t i) { return std::find(f.front.begin(), f.front.end(), i) != f.front.end(); };
   Table tb;
   const std::string unit = std::string(1, 'm').append(t.d_unit);  // d x 1000: mm, or mrad for a turning support
   tb.head = {"setting", "options", "stopped", "capacity (" + unit + ")", "capacity error", "thrust error max / rms (W)",
-             "over d (" + unit + ")", "time (s)", "wall (s)", method == "prd" ? "LP solves" : "cycles", "Pareto"};
+             "over d (" + unit + ")", "time (s)", "wall (s)", method == Method::prd ? "LP solves" : "cycles", "Pareto"};
   // Names, options and status left; numbers right, even where a cell adds a unit or a range.
   tb.align.assign(tb.head.size(), Align::right);
   for (int k = 0; k < 3; ++k) tb.align[k] = Align::left;
@@ -129,12 +127,12 @@ Table method_table(const Tradeoff& t, const std::string& method) {
     tb.rows.push_back({setting, opts, stopped, mm(r.capacity), pct_signed(r.capacity_err),
                        std::isfinite(r.thrust_max_err) ? weight(r.thrust_max_err) + " / " + weight(r.thrust_rms_err) : "n/a",
                        mm(r.thrust_range), time,
-                       secs(r.wall_s), std::to_string(method == "prd" ? r.lp_solves : r.cycles), front.empty() ? "-" : front});
+                       secs(r.wall_s), std::to_string(method == Method::prd ? r.lp_solves : r.cycles), front.empty() ? "-" : front});
   }
   return tb;
 }
 
-std::string reference_text(const Tradeoff& t, const std::string& method) {
+std::string reference_text(const Tradeoff& t, Method method) {
   for (const Row& r : t.rows)
     if (r.method == method && r.reference) {
       if (r.given) return "the finished run in " + r.source;
@@ -163,7 +161,7 @@ std::string csv_row(const Row& r) {
   std::string opts;
   for (const CaseOption& o : r.options) opts += (opts.empty() ? "" : ";") + o.key + "=" + value_text(o.value);
   std::ostringstream o;
-  o << r.method << "," << q(r.label) << "," << q(r.parameter) << "," << role(r) << "," << q(opts) << "," << status_name(r.status) << ","
+  o << method_name(r.method) << "," << q(r.label) << "," << q(r.parameter) << "," << role(r) << "," << q(opts) << "," << status_name(r.status) << ","
     << g(r.capacity) << "," << g(r.capacity_err) << "," << g(r.thrust_max_err) << "," << g(r.thrust_rms_err) << "," << g(r.thrust_range) << "," << g(r.time_s)
     << "," << g(r.time_min_s) << "," << g(r.time_max_s) << "," << (r.cpu ? "cpu" : "wall") << "," << g(r.wall_s) << "," << r.repeats << "," << r.lp_solves << "," << r.cycles << ","
     << (r.reused ? "yes" : "no") << "," << q(r.source) << "," << q(r.message) << "\n";
@@ -172,10 +170,10 @@ std::string csv_row(const Row& r) {
 
 std::vector<std::string> summary_lines(const Tradeoff& t) {
   std::vector<std::string> out;
-  for (const std::string& method : t.methods) {
+  for (const Method method : t.methods) {
     const std::vector<Row> rows = method_rows(t, method);
     if (rows.empty()) continue;
-    const std::string M = method_name(method);
+    const std::string M = method_label(method);
     double ref_time = kNaN;
     for (const Row& r : rows)
       if (r.reference) ref_time = r.time_s;
@@ -237,13 +235,14 @@ ojson tradeoff_json(const Tradeoff& t) {
   j["command"] = t.command;
   j["base"] = ojson::object();
   for (const CaseOption& o : t.base) j["base"][o.key] = to_ordered(o.value);
-  j["methods"] = t.methods;
+  j["methods"] = ojson::array();
+  for (Method m : t.methods) j["methods"].push_back(method_name(m));
   j["plan"] = plan_to_json(t.plan);
   j["targets"] = {{"capacity", json_number(t.target_capacity)}, {"thrust", json_number(t.target_thrust)}};
   j["rows"] = ojson::array();
   for (const Row& r : t.rows) {
     ojson x;
-    x["method"] = r.method;
+    x["method"] = method_name(r.method);
     x["setting"] = r.label;
     x["parameter"] = r.parameter;
     x["role"] = role(r);
@@ -271,7 +270,7 @@ ojson tradeoff_json(const Tradeoff& t) {
     j["rows"].push_back(x);
   }
   j["pareto"] = ojson::object();
-  for (const std::string& method : t.methods) {
+  for (const Method method : t.methods) {
     const std::vector<Row> rows = method_rows(t, method);
     ojson m;
     for (ErrorKind k : {ErrorKind::capacity, ErrorKind::thrust}) {
@@ -285,13 +284,13 @@ ojson tradeoff_json(const Tradeoff& t) {
                                   {"extra_s", json_number(b.cost_s)}, {"per_s", json_number(b.rate)}});
       m[k == ErrorKind::capacity ? "capacity" : "thrust"] = e;
     }
-    j["pareto"][method] = m;
+    j["pareto"][method_name(method)] = m;
   }
   j["summary"] = summary_lines(t);
   return j;
 }
 
-std::string svg_pareto(const Tradeoff& t, const std::string& method) {
+std::string svg_pareto(const Tradeoff& t, Method method) {
   const std::vector<Row> rows = method_rows(t, method);
   const auto colors = parameter_colors(rows);
   const double left = 70, pw = 360, ph = 280, gap = 120, top = 62, zero_band = 26;
@@ -312,7 +311,7 @@ std::string svg_pareto(const Tradeoff& t, const std::string& method) {
   if (d1 <= d0) d1 = d0 + 1;
   std::ostringstream o;
   o << svg_open(W, H);
-  o << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">" << xml_escape(method_name(method))
+  o << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">" << xml_escape(method_label(method))
     << " settings on " << xml_escape(t.case_name) << ": run time against error (reference: error 0)</text>\n";
   for (int panel = 0; panel < 2; ++panel) {
     const ErrorKind k = panel == 0 ? ErrorKind::capacity : ErrorKind::thrust;
@@ -385,7 +384,7 @@ std::string intro_text(const Tradeoff& t) {
   if (!t.base.empty()) s += ", here with " + options_text(t.base);
   s += ") one option at a time, or a few together (combined). Errors are against each method's reference, its most accurate setting: ";
   std::string refs;
-  for (const std::string& m : t.methods) refs += (refs.empty() ? "" : "; ") + method_name(m) + ": " + reference_text(t, m);
+  for (Method m : t.methods) refs += (refs.empty() ? "" : "; ") + std::string(method_label(m)) + ": " + reference_text(t, m);
   return s + refs + ".";
 }
 
@@ -417,10 +416,10 @@ Document tradeoff_document(const Tradeoff& t) {
   std::vector<Item> items;
   for (const std::string& s : summary_lines(t)) items.push_back({{s}, {}});
   d.list(std::move(items));
-  for (const std::string& m : t.methods) {
+  for (Method m : t.methods) {
     if (rows_of(t, m).empty()) continue;
-    d.heading(2, {method_name(m)});
-    d.figure("figures/pareto-" + m + ".svg", method_name(m) + ": run time against error", svg_pareto(t, m));
+    d.heading(2, {method_label(m)});
+    d.figure("figures/pareto-" + std::string(method_name(m)) + ".svg", method_label(m) + std::string(": run time against error"), svg_pareto(t, m));
     d.table(method_table(t, m));
   }
   d.heading(2, {"Definitions"});
@@ -450,8 +449,9 @@ void write_tradeoff(const std::string& dir, const Tradeoff& t) {
   for (const Row& r : t.rows) csv += csv_row(r);
   write_file_atomic((fs::path(dir) / "tradeoff.csv").string(), csv);
   write_file_atomic((fs::path(dir) / "tradeoff.json").string(), tradeoff_json(t).dump(1) + "\n");
-  for (const std::string& m : t.methods)
-    if (!rows_of(t, m).empty()) write_file_atomic((fs::path(dir) / "figures" / ("pareto-" + m + ".svg")).string(), svg_pareto(t, m));
+  for (Method m : t.methods)
+    if (!rows_of(t, m).empty())
+      write_file_atomic((fs::path(dir) / "figures" / ("pareto-" + std::string(method_name(m)) + ".svg")).string(), svg_pareto(t, m));
   write_file_atomic((fs::path(dir) / "report.md").string(), tradeoff_markdown(t));
   write_file_atomic((fs::path(dir) / "report.html").string(), tradeoff_html(t));
 }

@@ -38,7 +38,7 @@ RunResult run_once(const PlannedRun& p, const std::string& dir, double& io_cpu_s
   RunOutput out;
   out.dir = dir;
   out.write_cpu_s = &io_cpu_s;
-  return run_case_in_study(p.c, p.setting.method == "prd" ? Method::prd : Method::dem, out);
+  return run_case_in_study(p.c, p.setting.method, out);
 }
 
 double median(std::vector<double> v) {
@@ -101,8 +101,8 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
   };
   std::vector<Row> rows;
   const StudyProgress progress("tradeoff", runs.size());
-  std::map<std::string, RunResult> refs;  // method -> its reference run
-  std::map<std::string, bool> ref_ok;
+  std::map<Method, RunResult> refs;  // method -> its reference run
+  std::map<Method, bool> ref_ok;
   for (const PlannedRun& p : runs) {
     Row row;
     row.method = p.setting.method;
@@ -114,18 +114,19 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
     row.baseline = p.baseline;
     RunResult r;
     Times times;
+    const std::string name = method_name(row.method);
     const auto reused_dir = o.reference_dir.find(row.method);
     const std::string dir = o.runs_dir.empty() ? "" : (fs::path(o.runs_dir) / p.id).string();
     if (p.reference && reused_dir != o.reference_dir.end()) {
       // A finished run taken as the reference: read back, its own time quoted.
       r = load_results((fs::path(reused_dir->second) / "results.json").string(), base);
-      if (r.method != row.method)
-        throw std::runtime_error(reused_dir->second + "/results.json: method '" + r.method + "', expected '" + row.method + "'");
+      if (known_method(r) != row.method)
+        throw std::runtime_error(reused_dir->second + "/results.json: method '" + r.method + "', expected '" + name + "'");
       row.reused = row.given = true;
       row.source = reused_dir->second;
       row.options.clear();
       times.wall.push_back(r.timing.total_s);
-      say("tradeoff: " + row.method + " reference: read back from " + row.source);
+      say("tradeoff: " + name + " reference: read back from " + row.source);
     } else {
       const std::string case_text = case_to_json(p.c);
       bool done = false;
@@ -149,7 +150,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
             }
             row.reused = true;
             done = true;
-            say("tradeoff: " + row.method + " " + row.label + ": finished run reused from " + dir);
+            say("tradeoff: " + name + " " + row.label + ": finished run reused from " + dir);
           }
         } catch (const std::exception& e) {
           say(std::string("tradeoff: ") + e.what() + " (running it again)");
@@ -161,7 +162,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
           write_file_atomic((fs::path(dir) / "case.json").string(), case_text);
         }
         for (int k = 0; k < std::max(1, p.repeat); ++k) {
-          say("tradeoff: " + row.method + " " + row.label + (p.repeat > 1 ? " (" + std::to_string(k + 1) + " of " + std::to_string(p.repeat) + ")" : "") + " ...");
+          say("tradeoff: " + name + " " + row.label + (p.repeat > 1 ? " (" + std::to_string(k + 1) + " of " + std::to_string(p.repeat) + ")" : "") + " ...");
           const double c0 = thread_cpu_s();
           double io = 0;
           r = run_once(p, dir, io);
@@ -180,7 +181,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
     }
     const auto ref = refs.find(row.method);
     set_errors(row, base, ref == refs.end() ? nullptr : &ref->second, ref_ok[row.method], r);
-    say(progress.line(rows.size() + 1, row.method + " " + row.label + ": " + status_name(row.status) +
+    say(progress.line(rows.size() + 1, name + " " + row.label + ": " + status_name(row.status) +
                                            std::string(row.message.empty() ? "" : " (" + row.message + ")") + ", capacity " +
                                            (std::isfinite(row.capacity) ? std::to_string(row.capacity) : "n/a") + " m in " +
                                            std::to_string(row.time_s) + " s"));

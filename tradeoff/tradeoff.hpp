@@ -28,7 +28,7 @@ struct CaseOption {
 
 // A setting to measure: case options applied to the baseline (the case as given, with --set).
 struct Setting {
-  std::string method;     // "prd" or "dem"
+  Method method = Method::prd;
   std::string parameter;  // what it varies: a case option key, "baseline", "reference", "combined"
   std::string label;      // shown in tables and figures ("motion.step=0.002", "fast")
   std::vector<CaseOption> options;
@@ -43,7 +43,7 @@ struct MethodPlan {
 };
 
 struct Plan {
-  std::map<std::string, MethodPlan> methods;  // "prd", "dem"
+  std::map<Method, MethodPlan> methods;
 };
 
 // Parses a plan file (masonry-tradeoff-plan/1, README). Throws std::runtime_error with one line
@@ -74,8 +74,8 @@ struct PlannedRun {
 // case refuses or a relative value of an option the case has no number for.
 // `reused_references`: methods whose reference is a finished run read back (--reference-*): its
 // planned settings are not compared with the others'.
-std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const std::vector<std::string>& methods,
-                                    const std::string& plan_source, const std::vector<std::string>& reused_references = {});
+std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const std::vector<Method>& methods,
+                                    const std::string& plan_source, const std::vector<Method>& reused_references = {});
 
 // The case's current value of a dotted option (null when absent).
 nlohmann::json case_option(const Case& c, const std::string& key);
@@ -86,7 +86,8 @@ CaseOption parse_assignment(const std::string& text, const std::string& what);
 
 // One measured setting.
 struct Row {
-  std::string method, parameter, label, id;
+  Method method = Method::prd;
+  std::string parameter, label, id;
   std::vector<CaseOption> options;
   bool reference = false, baseline = false;
   std::string source;     // where the run is (its directory), or the reused run's directory
@@ -147,7 +148,7 @@ struct Tradeoff {
   std::string command;                 // how it was made (shown verbatim, escaped)
   std::vector<CaseOption> base;        // --set options: the baseline's difference from the case file
   Plan plan;
-  std::vector<std::string> methods;
+  std::vector<Method> methods;
   std::vector<Row> rows;               // in run order; per method the reference first
   double target_capacity = 0.01;       // "good enough" thresholds for the summary
   double target_thrust = 0.01;         // W
@@ -157,7 +158,7 @@ struct Tradeoff {
 
 struct RunOptions {
   std::string runs_dir;                             // each run's results.json goes to runs_dir/<id>/ ("": not kept)
-  std::map<std::string, std::string> reference_dir;  // method -> finished run directory used as its reference
+  std::map<Method, std::string> reference_dir;  // method -> finished run directory used as its reference
   bool resume = false;  // reuse runs_dir/<id>/ when it holds a finished run of the same setting
   std::function<void(const std::string&)> progress;  // one line per event (may be empty)
 };
@@ -178,7 +179,7 @@ nlohmann::ordered_json tradeoff_json(const Tradeoff& t);
 std::vector<std::string> summary_lines(const Tradeoff& t);
 // Time (log scale) against capacity error and against thrust error for one method's rows, the
 // Pareto-optimal points ringed and joined.
-std::string svg_pareto(const Tradeoff& t, const std::string& method);
+std::string svg_pareto(const Tradeoff& t, Method method);
 std::string tradeoff_markdown(const Tradeoff& t);
 std::string tradeoff_html(const Tradeoff& t);
 // DIR/tradeoff.json, DIR/tradeoff.csv (whole, rewritten), DIR/report.md, DIR/report.html,

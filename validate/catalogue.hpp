@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/case.hpp"
-#include "runs/method.hpp"
+#include "model/method.hpp"
 
 namespace masonry {
 

@@ -251,7 +251,7 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
         break;
       case Expected::Kind::method: {
         const Measured ref = measure(cat, b, x.method, cache);
-        row.expected_from = std::string(x.method == Method::prd ? "PRD" : "DEM") + " on the same case";
+        row.expected_from = std::string(method_label(x.method)) + " on the same case";
         if (ref.ok) row.expected = ref.value;
         else {
           have_expected = false;

@@ -10,8 +10,6 @@
 namespace masonry {
 namespace {
 
-using test::cross2;
-
 constexpr double kPi = 3.14159265358979323846;
 
 // Blocks and motion equal, names aside.
@@ -161,7 +159,7 @@ TEST(PointedArch, JointsWhereTheDrawingHasThem) {
       const Vec2 mid = (f.a + f.b) / 2;
       if (std::abs(mid.x()) < 1e-9) continue;  // the crown joint (checked above)
       const Vec2 centre(mid.x() < 0 ? g.e : -g.e, 0.0);
-      EXPECT_NEAR(cross2(f.a - centre, f.b - centre), 0.0, 1e-12) << "joint " << f.i << "-" << f.j;
+      EXPECT_NEAR(cross(f.a - centre, f.b - centre), 0.0, 1e-12) << "joint " << f.i << "-" << f.j;
       EXPECT_NEAR(f.length(), p.thickness, 1e-12);
       EXPECT_NEAR((f.a - centre).norm() + (f.b - centre).norm(), g.ri + g.re, 1e-12);
     }

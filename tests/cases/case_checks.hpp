@@ -19,15 +19,13 @@ namespace masonry::test {
 // DEM builds one b2PolygonShape per block.
 constexpr int kBox2DMaxVertices = 8;
 
-inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Strictly convex and counter-clockwise (every turn a left turn, no collinear vertex: Box2D
 // would drop it and the joints would no longer match).
 inline bool strictly_convex_ccw(const std::vector<Vec2>& v) {
   const size_t n = v.size();
   for (size_t k = 0; k < n; ++k) {
     const Vec2 d1 = v[(k + 1) % n] - v[k], d2 = v[(k + 2) % n] - v[(k + 1) % n];
-    if (!(cross2(d1, d2) > 1e-10 * d1.norm() * d2.norm())) return false;
+    if (!(cross(d1, d2) > 1e-10 * d1.norm() * d2.norm())) return false;
   }
   return true;
 }

@@ -24,7 +24,6 @@ namespace masonry {
 namespace {
 
 Vec2 turn(double t, const Vec2& v) { return Vec2(std::cos(t) * v.x() - std::sin(t) * v.y(), std::sin(t) * v.x() + std::cos(t) * v.y()); }
-Vec2 perp(const Vec2& v) { return Vec2(-v.y(), v.x()); }
 
 // A four-bar linkage: ground pivots p1, p4; segment 0 turns about p1, 1 hangs between p2 and p3,
 // 2 turns about p4.

@@ -37,7 +37,7 @@ inline Residual equilibrium_residual(const Case& c, const RunResult& r, const St
     const Pose& p = s.poses[l.block];
     const Vec2 x = cen[l.block] + rotation(p.angle) * (l.point - centroid(c.blocks[l.block].vertices));
     f[l.block] += l.force;
-    m[l.block] += (x - cen[l.block]).x() * l.force.y() - (x - cen[l.block]).y() * l.force.x();
+    m[l.block] += cross(x - cen[l.block], l.force);
   }
   for (const JointForce& jf : s.forces) {
     const JointInfo& ji = r.joints[jf.joint];
@@ -48,7 +48,7 @@ inline Residual equilibrium_residual(const Case& c, const RunResult& r, const St
       const Vec2 F = side == 0 ? Vec2(-on_j) : on_j;
       f[b] += F;
       const Vec2 arm = jf.point - cen[b];
-      m[b] += arm.x() * F.y() - arm.y() * F.x();
+      m[b] += cross(arm, F);
     }
   }
   Residual res;

@@ -28,6 +28,18 @@ TEST(RunsMethod, NamesRoundTrip) {
   EXPECT_STREQ(method_label(Method::dem), "DEM");
 }
 
+// A results file names its method as text: ours read back as the type, an outside solver's
+// (validate --solver) stays its own name, with no method of ours.
+TEST(RunsMethod, ResultsNameTheirMethod) {
+  RunResult r;
+  r.method = method_name(Method::prd);
+  EXPECT_EQ(known_method(r), Method::prd);
+  EXPECT_EQ(method_label(r), "PRD");
+  r.method = "toppling";
+  EXPECT_FALSE(known_method(r).has_value());
+  EXPECT_EQ(method_label(r), "toppling");
+}
+
 // While the run goes, the directory holds a prefix of it (never more steps than were recorded,
 // the first step from the start); at the end it holds the run itself.
 TEST(RunsWriting, EveryFinishedStepReachesTheDirectoryAndTheEndAlways) {

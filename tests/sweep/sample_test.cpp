@@ -80,7 +80,7 @@ TEST(SweepPlan, SampledDesignBasePointLinesAndSamples) {
   std::vector<int> per_voussoirs(14, 0);
   for (const SweepRun& r : p.runs) {
     count[r.point]++;
-    EXPECT_EQ(r.method, "prd");
+    EXPECT_EQ(r.method, Method::prd);
     if (r.point != SweepPoint::sample) continue;
     const double t = r.values[0].get<double>();
     EXPECT_GE(t, 0.1);
@@ -120,7 +120,7 @@ TEST(SweepPlan, OnlyRunsThoseSamplesOfTheSameDesign) {
     ASSERT_NE(same, all.runs.end());
     EXPECT_EQ(json(r.values).dump(), json(same->values).dump());
     EXPECT_EQ(r.id, same->id);  // so the rows of the two sweeps name the same runs
-    if (r.method == "dem") {
+    if (r.method == Method::dem) {
       ASSERT_GE(r.prd, 0);
       EXPECT_EQ(some.runs[r.prd].sample, r.sample);
     }

@@ -93,7 +93,7 @@ TEST(SweepSpec, RangesGiveTheValuesAPersonWouldType) {
   EXPECT_EQ(json(s.vary[1].values).dump(), "[0.1,0.2,0.3]");
   EXPECT_EQ(json(s.vary[2].values).dump(), "[10,20,30]");  // integers stay integers
   EXPECT_EQ(json(s.vary[3].values).dump(), "[0.5,0.6,0.7]");
-  EXPECT_EQ(s.methods, (std::vector<std::string>{"prd", "dem"}));  // the default
+  EXPECT_EQ(s.methods, (std::vector<Method>{Method::prd, Method::dem}));  // the default
   EXPECT_EQ(s.tolerance, 0.05);
 }
 
@@ -104,14 +104,14 @@ TEST(SweepPlan, FullFactorialWithOnePrdRunPerNonDemCombination) {
   // Friction does not change a PRD run: 2 PRD runs (one per step), then 2 x 3 DEM runs, last key fastest.
   ASSERT_EQ(p.runs.size(), 8u);
   for (int i = 0; i < 8; ++i) EXPECT_EQ(p.runs[i].index, i);
-  EXPECT_EQ(p.runs[0].method, "prd");
-  EXPECT_EQ(p.runs[1].method, "prd");
+  EXPECT_EQ(p.runs[0].method, Method::prd);
+  EXPECT_EQ(p.runs[1].method, Method::prd);
   EXPECT_TRUE(p.runs[0].values[1].is_null());
   EXPECT_EQ(p.runs[1].values[0].get<double>(), 0.01);
   const double expected[6][2] = {{0.02, 20}, {0.02, 30}, {0.02, 40}, {0.01, 20}, {0.01, 30}, {0.01, 40}};
   for (int k = 0; k < 6; ++k) {
     const SweepRun& r = p.runs[2 + k];
-    EXPECT_EQ(r.method, "dem");
+    EXPECT_EQ(r.method, Method::dem);
     EXPECT_EQ(r.values[0].get<double>(), expected[k][0]);
     EXPECT_EQ(r.values[1].get<double>(), expected[k][1]);
     EXPECT_EQ(r.prd, k < 3 ? 0 : 1);

@@ -63,10 +63,10 @@ double grid_capacity(double s) { return std::floor(topple_angle() / s) * s; }
 TEST(TradeoffPlan, BuiltInPlansParseAndHaveAReferencePerMethod) {
   for (bool quick : {false, true}) {
     const Plan p = default_plan(quick);
-    ASSERT_EQ(p.methods.count("prd"), 1u);
-    ASSERT_EQ(p.methods.count("dem"), 1u);
-    EXPECT_FALSE(p.methods.at("prd").reference.empty());
-    EXPECT_FALSE(p.methods.at("dem").vary.empty());
+    ASSERT_EQ(p.methods.count(Method::prd), 1u);
+    ASSERT_EQ(p.methods.count(Method::dem), 1u);
+    EXPECT_FALSE(p.methods.at(Method::prd).reference.empty());
+    EXPECT_FALSE(p.methods.at(Method::dem).vary.empty());
     // Round trip through the file format.
     const Plan q = parse_plan(plan_to_json(p).dump(), "round trip");
     EXPECT_EQ(plan_to_json(q).dump(), plan_to_json(p).dump());
@@ -111,7 +111,7 @@ TEST(TradeoffPlan, ExpansionResolvesRelativeValuesAndKeepsThePathLength) {
                                         "vary": {"motion.step": ["x1", 0.004, "x0.5", "x2"], "prd.contact_tolerance": [1e-4]},
                                         "combined": [{"label": "same as x2", "options": {"motion.step": 0.008}}]}})",
                             "plan.json");
-  const std::vector<PlannedRun> runs = expand_plan(c, p, {"prd"}, "plan.json");
+  const std::vector<PlannedRun> runs = expand_plan(c, p, {Method::prd}, "plan.json");
   // reference, baseline, step x0.5 (not the reference: the tolerance differs), step x2,
   // tolerance 1e-4; x1 and 0.004 are the baseline, the combined one repeats step x2.
   ASSERT_EQ(runs.size(), 5u);
@@ -133,7 +133,7 @@ TEST(TradeoffPlan, ValuesTheCaseRefusesFailBeforeAnyRun) {
   const Case c = parse_case(kTiltCase, "tilt.json");
   const auto error = [&](const std::string& plan) {
     try {
-      expand_plan(c, parse_plan(plan, "plan.json"), {"prd", "dem"}, "plan.json");
+      expand_plan(c, parse_plan(plan, "plan.json"), {Method::prd, Method::dem}, "plan.json");
     } catch (const std::runtime_error& e) {
       return std::string(e.what());
     }
@@ -223,10 +223,10 @@ TEST(TradeoffErrors, ThrustsAreComparedWhereBothRunsAreRecorded) {
 TEST(TradeoffSummary, AStepAlongTheFrontReadsAsTheErrorFallingForExtraTime) {
   Tradeoff t;
   t.case_name = "arch";
-  t.methods = {"dem"};
+  t.methods = {Method::dem};
   const auto row = [](const std::string& label, bool reference, double time, double cap_err) {
     Row r;
-    r.method = "dem";
+    r.method = Method::dem;
     r.label = label;
     r.parameter = reference ? "reference" : "motion.step";
     r.reference = reference;
@@ -258,7 +258,7 @@ TEST(TradeoffRun, PrdCapacitiesOnTheGridBelowTheToppleAngle) {
   const Case c = parse_case(kTiltCase, "tilt.json");
   const test::Scratch scratch("tradeoff-run");
   const fs::path d = scratch.path;
-  const std::vector<PlannedRun> plan = expand_plan(c, parse_plan(kTiltPlan, "plan.json"), {"prd"}, "plan.json");
+  const std::vector<PlannedRun> plan = expand_plan(c, parse_plan(kTiltPlan, "plan.json"), {Method::prd}, "plan.json");
   RunOptions o;
   o.runs_dir = (d / "runs").string();
   int calls = 0;
@@ -316,11 +316,11 @@ TEST(TradeoffRun, FailedRunsAreRecordedAndTheRestGoOn) {
   const Plan p = parse_plan(R"({"dem": {"reference": {"dem.timestep_factor": 0.5}, "baseline": false,
                                          "vary": {"dem.timestep_factor": [0.4]}}})",
                             "plan.json");
-  const std::vector<Row> rows = run_plan(c, expand_plan(c, p, {"dem"}, "plan.json"), {});
+  const std::vector<Row> rows = run_plan(c, expand_plan(c, p, {Method::dem}, "plan.json"), {});
   ASSERT_EQ(rows.size(), 2u);
   Tradeoff t;
   t.case_name = c.name;
-  t.methods = {"dem"};
+  t.methods = {Method::dem};
   t.rows = rows;
   for (const Row& r : rows) {
     EXPECT_EQ(r.status, RunStatus::error);

@@ -1,4 +1,4 @@
-#include "runs/method.hpp"
+#include "model/method.hpp"
 
 namespace masonry {
 
