@@ -33,5 +33,6 @@ void add_compare_commands(CLI::App& app, Commands& out);  // app/compare_command
 void add_sweep_commands(CLI::App& app, Commands& out);    // app/sweep_commands.cpp: sweep
 void add_tradeoff_commands(CLI::App& app, Commands& out); // app/tradeoff_commands.cpp: tradeoff
 void add_validate_commands(CLI::App& app, Commands& out); // app/validate_commands.cpp: validate
+void add_option_commands(CLI::App& app, Commands& out);   // app/options_commands.cpp: options
 
 }  // namespace masonry

@@ -129,9 +129,9 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     runs.push_back({prd_label(results.back().settings.value("hold_closed", nlohmann::json::array())), nullptr, "prd"});
     std::vector<double> phis = o.frictions;
     if (phis.empty()) phis.push_back(c.dem.friction_angle);
-    const Case dem_case = o.dem_step ? with_option(c, "motion.step", *o.dem_step) : c;
+    const Case dem_case = o.dem_step ? with_option(c, option_key(&Motion::step), *o.dem_step) : c;
     for (double phi : phis) {
-      const Case dc = with_option(dem_case, "dem.friction_angle", phi);
+      const Case dc = with_option(dem_case, option_key(&DemOptions::friction_angle), phi);
       const std::string sub = phis.size() == 1 ? "dem" : "dem-phi" + num_text(phi);
       const std::string dir = o.out_dir + "/" + sub;
       progress(o.quiet, "compare: DEM (friction " + num_text(phi) + " deg) on " + c.name + " ...\n");
@@ -170,20 +170,8 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
 }
 
 void add_common_options(CLI::App* sub, CompareOpts& o) {
-  using K = CaseFlags::Kind;
-  o.settings.add(sub, "--step", "motion.step", K::number, "Increment of d for both methods, m");
-  o.settings.add(sub, "--max-steps", "motion.max_steps", K::integer, "Largest number of steps for both methods");
+  o.settings.add(sub, OptionCommand::compare);
   sub->add_option("--dem-step", o.dem_step, "DEM increment of d only, m (default: --step)")->check(CLI::PositiveNumber);
-  o.settings.add(sub, "--stiffness-reduction", "dem.stiffness_reduction", K::number, "DEM: divide kn and ks by this (the paper used 10 for the arch)");
-  o.settings.add(sub, "--timestep-factor", "dem.timestep_factor", K::number, "DEM: time step / critical time step bound, (0, 1]");
-  o.settings.add(sub, "--hold-time", "dem.hold_time", K::number, "DEM: model-time cap of each hold, s");
-  o.settings.add(sub, "--move-time", "dem.move_time", K::number, "DEM: model time to travel one increment at constant speed, s (0: the servo)");
-  o.settings.add(sub, "--damping", "dem.damping", K::number, "DEM: local damping coefficient in [0, 1)");
-  o.settings.add(sub, "--kinetic-ratio", "dem.kinetic_ratio", K::number,
-                 "DEM: every block's kinetic energy limit while the supports move, over its weight x support travel (dem/README.md, \"The loading rate\")");
-  o.settings.add(sub, "--hold", "prd.hold_closed", K::texts,
-                 "PRD: keep this joint corner closed over the whole run (BLOCK/BLOCK:A; repeatable), to follow a second mechanism "
-                 "(dem/README.md, \"The branch X\")");
   sub->add_option("--frames", o.frames, "Slider positions in report.html (default 60, 24 for scenes over 60 blocks)")->check(CLI::NonNegativeNumber);
   sub->add_option("--tolerances", o.tolerances, "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true, \"hinge_shift\": 1}: exit code 1 when one is exceeded");
   sub->add_option("--notes", o.notes,
@@ -219,7 +207,7 @@ void add_compare_commands(CLI::App& app, Commands& out) {
                      // The standard case as the paper ran it: 1 mm increments, friction 35 deg and
                      // the joint stiffnesses divided by 10 (its Section 3.3), which is what brings
                      // the DEM under a minute (about 40 s here; undivided it takes a few times longer).
-                     const Case c = with_option(standard_case("pointed-arch"), "dem.stiffness_reduction", 10.0);
+                     const Case c = with_option(standard_case("pointed-arch"), option_key(&DemOptions::stiffness_reduction), 10.0);
                      o->frictions = {35.0};
                      const int rc = run_compare(c, *o, "(built-in pointed-arch, dem.stiffness_reduction 10)");
                      std::cout << "Report: " << o->out_dir << "/report.html (open it in a browser) and " << o->out_dir << "/report.md\n";

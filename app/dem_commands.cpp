@@ -123,29 +123,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   CLI::App* sub = app.add_subcommand("dem", "Rigid-block DEM capacity run (explicit, Mohr-Coulomb joints)");
   sub->add_option("case", o->case_path, "Case file (masonry-case/1 JSON)")->required();
   sub->add_option("--out", o->out_dir, "Output directory for results.json and steps.csv")->required();
-  using K = CaseFlags::Kind;
-  CaseFlags& f = o->settings;
-  f.add(sub, "--friction", "dem.friction_angle", K::number, "Friction angle, degrees (default 35)");
-  f.add(sub, "--stiffness-reduction", "dem.stiffness_reduction", K::number, "Divide kn and ks by this (default 1; the paper used 10)");
-  f.add(sub, "--damping", "dem.damping", K::number, "Local damping coefficient in [0, 1) (default 0.8)");
-  f.add(sub, "--timestep-factor", "dem.timestep_factor", K::number, "Time step / critical time step bound, in (0, 1] (default 1)");
-  f.add(sub, "--equilibrium-tolerance", "dem.equilibrium_tolerance", K::number, "Largest unbalanced force / block weight at equilibrium (default 1e-4)");
-  f.add(sub, "--velocity-tolerance", "dem.velocity_tolerance", K::number, "Largest block speed at equilibrium, m/s (default 1e-5)");
-  f.add(sub, "--hold-time", "dem.hold_time", K::number, "Model-time cap of one hold, s: a hold that neither settles nor runs away by then is undecided (default 30)");
-  f.add(sub, "--step", "motion.step", K::number, "Increment of the support path parameter d, m");
-  f.add(sub, "--max-steps", "motion.max_steps", K::integer, "Number of increments at most");
-  f.add(sub, "--kinetic-ratio", "dem.kinetic_ratio", K::number, "Moves keep every block's kinetic energy below this x its weight x support travel over the increment (default 1e-3)");
-  f.add(sub, "--move-time", "dem.move_time", K::number, "Constant-speed move over this model time per increment, s, instead of the kinetic-energy servo (default 0: servo)");
-  f.add(sub, "--bracket-fraction", "dem.bracket_fraction", K::number, "Bisect a failed increment down to this fraction of the step (default 0.01; 0: no bisection)");
-  f.add(sub, "--confirm-collapse", "dem.confirm_collapse", K::flag,
-        "Confirm a located collapse by the short move from the bracket's last equilibrium; a failure it does not reproduce "
-        "becomes an equilibrium and the run goes on (dem/README.md, stage 4; off by default)");
-  f.add(sub, "--ramp-fraction", "dem.ramp_fraction", K::number, "Fraction of the move time spent speeding up (and slowing down), 0..0.5 (default 0.25; 0: abrupt)");
-  f.add(sub, "--collapse-drift", "dem.collapse_drift", K::number, "Block travel within an unsettled hold that means collapse, m (default 2% of scene)");
-  f.add(sub, "--open-gap", "dem.open_gap", K::number, "Gap growth above which a joint corner is open, m (default prd.contact_tolerance)");
-  f.add(sub, "--hold-damping", "dem.hold_damping", K::text,
-        "How holds come to rest: local (local damping alone, the default) or kinetic (also stop every free block when the "
-        "kinetic energy passes a peak; dem/README.md, \"Holds: local or kinetic damping\")");
+  o->settings.add(sub, OptionCommand::dem);
   sub->add_flag("--quiet", o->quiet, "No progress lines and no summary: only warnings and why a run failed");
   sub->add_flag("--convergence", o->convergence,
                 "Convergence study: the run at these settings and at settings that must not matter (dem/README.md), "

@@ -1,22 +1,45 @@
 #include "app/flags.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 namespace masonry {
 
-void CaseFlags::add(CLI::App* sub, const std::string& name, const std::string& key, Kind kind, const std::string& help) {
-  Flag& f = flags_.emplace_back();
-  f.name = name;
-  f.key = key;
-  f.kind = kind;
-  const std::string text = help + " (case: " + key + ")";
-  switch (kind) {
-    case Kind::number: sub->add_option(name, f.number, text); break;
-    case Kind::integer: sub->add_option(name, f.integer, text); break;
-    case Kind::flag: sub->add_flag(name, f.on, text); break;
-    case Kind::text: sub->add_option(name, f.text, text); break;
-    case Kind::texts: sub->add_option(name, f.texts, text)->allow_extra_args(false); break;
+OptionInfo CaseFlags::info(const std::string& key) {
+  for (OptionInfo& i : option_infos())
+    if (i.key == key) return std::move(i);
+  throw std::logic_error("masonry: no option '" + key + "'");
+}
+
+void CaseFlags::add(CLI::App* sub, OptionCommand command) {
+  for (const OptionInfo& i : option_infos()) {
+    if (std::find(i.commands.begin(), i.commands.end(), command) == i.commands.end()) continue;
+    const bool both = command == OptionCommand::compare;
+    add(sub, i, both && i.section == "prd" ? "PRD: " : both && i.section == "dem" ? "DEM: " : "");
   }
+}
+
+CLI::Option* CaseFlags::add(CLI::App* sub, const OptionInfo& i, const std::string& prefix) {
+  Flag& f = flags_.emplace_back();
+  f.name = i.flag;
+  f.key = i.key;
+  // "Friction angle of the joints, deg (case: dem.friction_angle, default 35, in [0, 90]; 90: no slip limit)"
+  std::string text = prefix + i.help + (*i.unit ? std::string(", ") + i.unit : "") + " (case: " + i.key;
+  if (!i.default_text.empty()) text += ", default " + i.default_text;
+  if (i.type == OptionType::number || i.type == OptionType::integer) text += ", in " + i.range_text;
+  else if (i.type == OptionType::word) text += "; " + i.range_text;
+  else if (i.type == OptionType::words) text += "; " + i.range_text + "; repeatable";
+  if (*i.note) text += std::string("; ") + i.note;
+  text += ")";
+  switch (i.type) {
+    case OptionType::number: return sub->add_option(f.name, f.number, text);
+    case OptionType::integer: return sub->add_option(f.name, f.integer, text);
+    case OptionType::boolean: return sub->add_flag(f.name, f.on, text);
+    case OptionType::word: return sub->add_option(f.name, f.text, text);
+    case OptionType::words: return sub->add_option(f.name, f.texts, text)->allow_extra_args(false);
+  }
+  throw std::logic_error("masonry: an option of no type");
 }
 
 Case CaseFlags::apply(Case c) const {

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   masonry::add_sweep_commands(app, commands);
   masonry::add_tradeoff_commands(app, commands);
   masonry::add_validate_commands(app, commands);
+  masonry::add_option_commands(app, commands);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -46,9 +46,10 @@ void warn_lp_cost(const Case& c, const char* cmd, double seconds_per_block_squar
             << " s (it grows with the square of the blocks)\n";
 }
 
-// `masonry check --step H [--hold CORNER ...]`.
-int print_first_step(const Case& c, double tol, double h, const std::vector<std::string>& held, bool as_json) {
-  const FirstStep f = prd_first_step(c, tol, h, held);
+// `masonry check --step H [--hold CORNER ...]`: at the case's contact tolerance, holding its corners.
+int print_first_step(const Case& c, double h, bool as_json) {
+  const std::vector<std::string>& held = c.prd.hold_closed;
+  const FirstStep f = prd_first_step(c, c.prd.contact_tolerance, h, held);
   nlohmann::ordered_json j;
   j["case"] = c.name;
   j["step"] = h;
@@ -103,23 +104,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     sub->add_option("case", *path, "Case file (JSON, masonry-case/1)")->required();
     sub->add_flag("--quiet", *quiet, "No progress lines and no summary: only warnings, the answers asked for and why a run failed");
     sub->add_option("--out", *dir, "Output directory: results.json and steps.csv")->required();
-    using K = CaseFlags::Kind;
-    settings->add(sub, "--step", "motion.step", K::number, "Increment of d per step, m");
-    settings->add(sub, "--max-steps", "motion.max_steps", K::integer, "Largest number of steps");
-    settings->add(sub, "--tolerance", "prd.contact_tolerance", K::number, "Contact tolerance, m");
-    settings->add(sub, "--adaptive", "prd.adaptive", K::flag,
-                  "Event-driven steps: long while the mechanism holds, each event located to --event-tolerance");
-    settings->add(sub, "--event-tolerance", "prd.event_tolerance", K::number,
-                  "With --adaptive: how closely events are located, m (default 1e-4 of the scene size)");
-    settings->add(sub, "--max-step", "prd.max_step", K::number,
-                  "With --adaptive: the longest step, m (default: the smaller of 16 x --step and 0.4 sqrt(event tolerance x scene size), "
-                  "1/250 of the scene at the default tolerance)");
-    settings->add(sub, "--hold", "prd.hold_closed", K::texts,
-                  "Keep this joint corner closed over the whole run (BLOCK/BLOCK:A or :B, as results name them; repeatable): "
-                  "the next mechanism's capacity where two are near-tied (dem/README.md, \"The branch X\")");
-    settings->add(sub, "--sliding", "prd.sliding_check", K::flag,
-                  "Sliding check on every step: friction demand of the joint forces and the least friction angle "
-                  "an admissible force state needs (results: \"sliding\" in each step and at the top)");
+    settings->add(sub, OptionCommand::prd);
     sub->add_option("--friction-angle", *friction,
                     "Report the first step and joint where the friction demand exceeds this angle, deg (implies --sliding)")
         ->check(CLI::Range(0.0, 90.0));
@@ -176,23 +161,22 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     auto* sub = app.add_subcommand("check", "Single PRD analysis: is the structure stable as it stands?");
     auto path = std::make_shared<std::string>();
     auto as_json = std::make_shared<bool>(false);
-    auto tol = std::make_shared<double>(0.0);
+    auto settings = std::make_shared<CaseFlags>();  // the flags that set case options
     sub->add_option("case", *path, "Case file (JSON, masonry-case/1)")->required();
     sub->add_flag("--json", *as_json, "Print one JSON object (stable, forces, reactions)");
-    sub->add_option("--tolerance", *tol, "Contact tolerance, m (default: the case's prd.contact_tolerance)")->check(CLI::PositiveNumber);
+    settings->add(sub, &PrdOptions::contact_tolerance);
     auto step = std::make_shared<double>(0.0);
-    auto held = std::make_shared<std::vector<std::string>>();
     sub->add_option("--step", *step,
                     "Instead: the run's first LP, the mechanism the support motion over this step (m) drives from the start, the "
                     "potential energy it releases and the corners it opens")
         ->check(CLI::PositiveNumber);
-    sub->add_option("--hold", *held, "With --step: keep this joint corner closed (BLOCK/BLOCK:A or :B, as --step lists them); repeatable")
-        ->needs("--step");
+    // With --step, the corners the run holds closed (the case's and these) are held in its first LP.
+    settings->add(sub, &PrdOptions::hold_closed)->needs("--step");
     out.push_back({sub, [=]() {
-                     Case c = load_case(*path);
+                     const Case c = settings->apply(load_case(*path));
                      warn_lp_cost(c, "check", 1.2e-7);
-                     if (*step > 0) return print_first_step(c, *tol > 0 ? *tol : c.prd.contact_tolerance, *step, *held, *as_json);
-                     const PrdCheck k = prd_check(c, *tol > 0 ? *tol : c.prd.contact_tolerance);
+                     if (*step > 0) return print_first_step(c, *step, *as_json);
+                     const PrdCheck k = prd_check(c, c.prd.contact_tolerance);
                      RunResult r;
                      r.method = method_name(Method::prd);
                      r.case_name = c.name;

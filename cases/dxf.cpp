@@ -19,6 +19,7 @@
 #include "model/fields.hpp"
 #include "model/interfaces.hpp"
 #include "model/io.hpp"
+#include "model/options.hpp"
 #include "report/format.hpp"
 
 namespace masonry {
@@ -416,8 +417,9 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
   doc["blocks"] = blocks;
   const json fragment = merge_fragment(o.merge_file);
   for (auto it = fragment.begin(); it != fragment.end(); ++it) doc[it.key()] = it.value();
-  const double tol = doc.contains("prd") && doc["prd"].contains("contact_tolerance") && doc["prd"]["contact_tolerance"].is_number()
-                         ? doc["prd"]["contact_tolerance"].get<double>()
+  const char* tol_field = option_of(&PrdOptions::contact_tolerance).name;
+  const double tol = doc.contains("prd") && doc["prd"].contains(tol_field) && doc["prd"][tol_field].is_number()
+                         ? doc["prd"][tol_field].get<double>()
                          : PrdOptions{}.contact_tolerance;
   const std::vector<std::string> near = near_joints(pieces, tol, std::max(o.near_joint, o.snap));
   out.notes.insert(out.notes.end(), near.begin(), near.end());

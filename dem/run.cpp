@@ -9,6 +9,7 @@
 
 #include "dem/dem.hpp"
 #include "model/io.hpp"
+#include "model/options.hpp"
 #include "dem/protocol.hpp"
 
 namespace masonry {
@@ -100,31 +101,20 @@ struct Failure {
   std::vector<BracketTrial> trials;
 };
 
+// Every option as the case set it (model/options.cpp), then what the run derived from them where
+// the case leaves a default, and the motion's increment.
 void record_settings(Run& u) {
   const DemSettings& s = u.s;
-  u.r.settings = {{"young_modulus", s.young_modulus},
-                  {"poisson", s.poisson},
-                  {"kn", u.m.kn()},
-                  {"ks", u.m.ks()},
-                  {"stiffness_reduction", s.stiffness_reduction},
-                  {"friction_angle", s.friction_angle},
-                  {"damping", s.damping},
-                  {"timestep_factor", s.timestep_factor},
-                  {"critical_dt", u.m.critical_dt()},
-                  {"dt", u.m.dt()},
-                  {"mass_scale", u.m.mass_scale()},
-                  {"equilibrium_tolerance", s.equilibrium_tolerance},
-                  {"velocity_tolerance", s.velocity_tolerance},
-                  {"hold_time", s.hold_time},
-                  {"kinetic_ratio", s.kinetic_ratio},
-                  {"move_time", s.move_time},
-                  {"ramp_fraction", s.ramp_fraction},
-                  {"collapse_drift", u.lim.collapse_drift},
-                  {"bracket_fraction", s.bracket_fraction},
-                  {"hold_damping", hold_damping_name(s.hold_damping)},
-                  {"open_gap", s.open_gap.value_or(u.c.prd.contact_tolerance)},
-                  {"step", s.step},
-                  {"max_steps", s.max_steps}};
+  u.r.settings = echo_options<DemOptions>(s);
+  set_setting(u.r.settings, &DemOptions::kn, u.m.kn());
+  set_setting(u.r.settings, &DemOptions::ks, u.m.ks());
+  set_setting(u.r.settings, &DemOptions::collapse_drift, u.lim.collapse_drift);
+  set_setting(u.r.settings, &DemOptions::open_gap, s.open_gap.value_or(u.c.prd.contact_tolerance));
+  u.r.settings["critical_dt"] = u.m.critical_dt();
+  u.r.settings["dt"] = u.m.dt();
+  u.r.settings["mass_scale"] = u.m.mass_scale();
+  set_setting(u.r.settings, &Motion::step, s.step);
+  set_setting(u.r.settings, &Motion::max_steps, s.max_steps);
 }
 
 // The run's own CPU and wall time so far, without handing out results.

@@ -14,6 +14,7 @@
 
 #include "model/interfaces.hpp"
 #include "model/io.hpp"
+#include "model/options.hpp"
 
 namespace masonry {
 
@@ -23,16 +24,11 @@ using nlohmann::ordered_json;
 namespace {
 // Ranges of the case's quantities (README, "Case files": ranges), wide enough for any masonry
 // structure and narrow enough that every derived quantity stays finite in double precision.
-constexpr double kMaxLength = 1e5;          // m: depths, steps, tolerances
+// The options' ranges are their rows' (model/options.cpp).
+constexpr double kMaxLength = 1e5;          // m: depths
 constexpr double kMaxDensity = 1e5;         // kg/m^3 (the densest element, osmium, is 2.3e4)
-constexpr double kMaxGravity = 1e3;         // m/s^2 (100 g)
 constexpr double kMaxForce = 1e12;          // N
 constexpr double kMaxRate = 1e3;            // m or rad per m of d
-constexpr double kMaxModulus = 1e13;        // Pa (diamond: 1.2e12)
-constexpr double kMaxJointStiffness = 1e18; // Pa/m
-constexpr double kMaxModelTime = 1e4;       // s of DEM model time
-constexpr double kFinestFraction = 1e-9;    // of the scene size: the finest length a case may set
-constexpr long long kMaxSteps = 100000000;  // steps of one run: 1e8 LPs or DEM increments is days of work
 }  // namespace
 
 int Case::block_index(const std::string& id) const {
@@ -152,62 +148,18 @@ struct Reader : FieldReader<CaseError, json> {
   }
 };
 
-// The ranges of the DEM's settings, checked once: by the loader for a case file or an option,
-// and by the DEM (check_dem_options) for settings a study derives in code.
-void check_dem(const DemOptions& d, const Reader& r, bool allow_unstable_timestep = false) {
-  // A refusal shows the value, as range() does: a study's derived setting is not in any file.
-  const auto within = [&](bool ok, const char* field, double x, const char* rule) {
-    if (ok) return;
-    std::ostringstream m;
-    m << "field '" << field << "' = " << x << " " << rule;
-    r.fail("dem", m.str());
-  };
-  r.range(d.young_modulus, 0, kMaxModulus, "dem", "young_modulus", "Pa", true);
-  within(d.poisson > -1 && d.poisson < 0.5, "poisson", d.poisson, "must lie in (-1, 0.5)");
-  within(d.friction_angle >= 0 && d.friction_angle <= 90, "friction_angle", d.friction_angle, "must lie in [0, 90] degrees");
-  if (d.kn) r.range(*d.kn, 0, kMaxJointStiffness, "dem", "kn", "Pa/m", true);
-  if (d.ks) r.range(*d.ks, 0, kMaxJointStiffness, "dem", "ks", "Pa/m", true);
-  r.range(d.stiffness_reduction, 1e-6, 1e6, "dem", "stiffness_reduction", "");
-  within(d.damping >= 0 && d.damping < 1, "damping", d.damping, "must lie in [0, 1)");
-  // Above 1 the explicit integration is unstable (dem/README.md): refused for every command, the
-  // DEM's tests of a blow-up alone may ask for it.
-  if (!(allow_unstable_timestep && d.timestep_factor > 1 && std::isfinite(d.timestep_factor)))
-    r.range(d.timestep_factor, 0, 1, "dem", "timestep_factor", "(of the critical time step, the stability limit of the explicit integration)", true);
-  r.range(d.equilibrium_tolerance, 0, 1, "dem", "equilibrium_tolerance", "(of a block's weight)", true);
-  r.range(d.velocity_tolerance, 0, 1, "dem", "velocity_tolerance", "m/s", true);
-  r.range(d.hold_time, 0, kMaxModelTime, "dem", "hold_time", "s", true);
-  r.range(d.move_time, 0, kMaxModelTime, "dem", "move_time", "s (0: the support speed servoed on the kinetic energy)");
-  r.range(d.kinetic_ratio, 0, 1, "dem", "kinetic_ratio", "", true);
-  within(d.bracket_fraction >= 0 && d.bracket_fraction < 1, "bracket_fraction", d.bracket_fraction, "must lie in [0, 1)");
-  within(d.ramp_fraction >= 0 && d.ramp_fraction <= 0.5, "ramp_fraction", d.ramp_fraction, "must lie in [0, 0.5]");
-  r.range(d.collapse_drift, 0, kMaxLength, "dem", "collapse_drift", "m (0: 2% of the scene size)");
-  if (d.open_gap) r.range(*d.open_gap, 0, kMaxLength, "dem", "open_gap", "m");
-}
-
-
-// Tolerances and steps against the scene: below 1e-9 of the scene size a length is lost in the
-// round-off of the coordinates; a contact tolerance or collapse drift above a tenth of it makes
-// every block touch or nothing a collapse. Derived quantities must be finite before any step.
+// Tolerances and steps against the scene (the options' SceneRange): below 1e-9 of the scene size a
+// length is lost in the round-off of the coordinates; a contact tolerance above a tenth of it makes
+// every block touch. A collapse drift below 1e-4 of the scene is not evidence of a collapse: the
+// elastic settling under gravity and a hinge snapping to its neighbouring joint move blocks that
+// far (the pointed arch's snap: 4 mm, 0.2% of it), and 1e-9 of the scene made the settling itself
+// a collapse. Derived quantities must be finite before any step.
 void check_scales(const Case& c, const Reader& r) {
   const double L = scene_size(c);
-  const double fine = kFinestFraction * L;
   if (!(std::isfinite(L) && L > 0)) r.fail("blocks", "the scene has no finite size");
-  auto between = [&](double x, double lo, double hi, const std::string& where, const std::string& field, const char* why) {
-    if (x >= lo && x <= hi) return;
-    std::ostringstream m;
-    m << "field '" << field << "' = " << x << " m is outside [" << lo << ", " << hi << "] m for a scene of " << L << " m ("
-      << why << ")";
-    r.fail(where, m.str());
-  };
-  between(c.motion.step, fine, L, "motion", "step", "1e-9 to 1 times the scene size");
-  between(c.prd.contact_tolerance, fine, 0.1 * L, "prd", "contact_tolerance", "1e-9 to 0.1 times the scene size");
-  if (c.prd.event_tolerance > 0) between(c.prd.event_tolerance, fine, 0.1 * L, "prd", "event_tolerance", "1e-9 to 0.1 times the scene size");
-  if (c.prd.max_step > 0) between(c.prd.max_step, fine, L, "prd", "max_step", "1e-9 to 1 times the scene size");
-  // A drift below 1e-4 of the scene is not evidence of a collapse: the elastic settling under
-  // gravity and a hinge snapping to its neighbouring joint move blocks that far (the pointed
-  // arch's snap: 4 mm, 0.2% of it), and 1e-9 of the scene made the settling itself a collapse.
-  if (c.dem.collapse_drift > 0)
-    between(c.dem.collapse_drift, 1e-4 * L, L, "dem", "collapse_drift", "1e-4 to 1 times the scene size: a smaller drift is the elastic settling");
+  check_scene_options(c.motion, L, r.source);
+  check_scene_options(c.prd, L, r.source);
+  check_scene_options(c.dem, L, r.source);
   // The weight and what the supports travel over the run: finite, so energies and ratios are.
   double W = 0;
   for (const Block& b : c.blocks)
@@ -252,14 +204,12 @@ Case parse_case(const std::string& text, const std::string& source) {
   Reader r{source};
   Case c;
   c.source = source;
-  r.only(doc, "case", {"format", "name", "description", "gravity", "blocks", "loads", "motion", "prd", "dem"});
-  if (!doc.is_object() || !doc.contains("format")) r.fail("case", "field 'format' is required (\"masonry-case/1\")");
+  read_options(doc, c, source, {"format", "name", "description", "blocks", "loads", "motion", "prd", "dem"});
+  if (!doc.contains("format")) r.fail("case", "field 'format' is required (\"masonry-case/1\")");
   const std::string format = r.string(doc, "case", "format", "");
   if (format != "masonry-case/1") r.fail("case", "field 'format': expected \"masonry-case/1\", got \"" + printable(format) + "\"");
   c.name = r.string(doc, "case", "name", source);
   c.description = r.string(doc, "case", "description", "");
-  c.gravity = r.number(doc, "case", "gravity", 9.81);
-  r.range(c.gravity, 0, kMaxGravity, "case", "gravity", "m/s^2 (it acts along -y)");
 
   if (!doc.contains("blocks") || !doc["blocks"].is_array() || doc["blocks"].empty())
     r.fail("case", "field 'blocks' must be a non-empty array");
@@ -318,16 +268,7 @@ Case parse_case(const std::string& text, const std::string& source) {
 
   if (doc.contains("motion")) {
     const json& jm = doc["motion"];
-    r.only(jm, "motion", {"step", "max_steps", "supports"});
-    c.motion.step = r.number(jm, "motion", "step", c.motion.step);
-    r.range(c.motion.step, 0, kMaxLength, "motion", "step", "m", true);
-    if (jm.contains("max_steps")) {
-      const json& m = jm["max_steps"];
-      if (!m.is_number_integer()) r.fail("motion", "field 'max_steps' must be a whole number of steps");
-      if (m.is_number_unsigned() ? m.get<unsigned long long>() > kMaxSteps : m.get<long long>() < 0)
-        r.fail("motion", "field 'max_steps' = " + m.dump() + " is outside [0, " + std::to_string(kMaxSteps) + "] steps");
-      c.motion.max_steps = m.get<int>();
-    }
+    read_options(jm, c.motion, source, {"supports"});
     if (jm.contains("supports")) {
       if (!jm["supports"].is_array()) r.fail("motion", "field 'supports' must be an array");
       std::set<int> seen;
@@ -351,63 +292,8 @@ Case parse_case(const std::string& text, const std::string& source) {
     }
   }
 
-  if (doc.contains("prd")) {
-    const json& jp = doc["prd"];
-    r.only(jp, "prd", {"contact_tolerance", "adaptive", "event_tolerance", "max_step", "sliding_check", "hold_closed"});
-    if (jp.contains("hold_closed")) {
-      const json& h = jp["hold_closed"];
-      if (!h.is_array()) r.fail("prd", "field 'hold_closed' must be a list of joint corners (\"BLOCK/BLOCK:A\")");
-      c.prd.hold_closed.clear();
-      for (const json& x : h) {
-        const std::string s = x.is_string() ? x.get<std::string>() : std::string();
-        const size_t slash = s.find('/');
-        const bool ok = slash != std::string::npos && slash > 0 && s.size() > slash + 3 &&
-                        (s.compare(s.size() - 2, 2, ":A") == 0 || s.compare(s.size() - 2, 2, ":B") == 0);
-        if (!ok) r.fail("prd", "field 'hold_closed': '" + printable(x.is_string() ? s : x.dump()) + "' is not a joint corner (BLOCK/BLOCK:A or :B)");
-        c.prd.hold_closed.push_back(s);
-      }
-    }
-    c.prd.sliding_check = r.boolean(jp, "prd", "sliding_check", c.prd.sliding_check);
-    c.prd.contact_tolerance = r.number(jp, "prd", "contact_tolerance", c.prd.contact_tolerance);
-    r.range(c.prd.contact_tolerance, 0, kMaxLength, "prd", "contact_tolerance", "m", true);
-    c.prd.adaptive = r.boolean(jp, "prd", "adaptive", c.prd.adaptive);
-    c.prd.event_tolerance = r.number(jp, "prd", "event_tolerance", c.prd.event_tolerance);
-    c.prd.max_step = r.number(jp, "prd", "max_step", c.prd.max_step);
-    r.range(c.prd.event_tolerance, 0, kMaxLength, "prd", "event_tolerance", "m (0: 1e-4 of the scene size)");
-    r.range(c.prd.max_step, 0, kMaxLength, "prd", "max_step", "m (0: the default)");
-  }
-
-  if (doc.contains("dem")) {
-    const json& jd = doc["dem"];
-    r.only(jd, "dem", {"young_modulus", "poisson", "friction_angle", "kn", "ks", "stiffness_reduction", "damping",
-                       "timestep_factor", "equilibrium_tolerance", "velocity_tolerance", "hold_time",
-                       "kinetic_ratio", "move_time", "ramp_fraction", "collapse_drift", "bracket_fraction", "open_gap",
-                       "confirm_collapse", "hold_damping"});
-    DemOptions& d = c.dem;
-    d.young_modulus = r.number(jd, "dem", "young_modulus", d.young_modulus);
-    d.poisson = r.number(jd, "dem", "poisson", d.poisson);
-    d.friction_angle = r.number(jd, "dem", "friction_angle", d.friction_angle);
-    if (jd.contains("kn")) d.kn = r.number(jd["kn"], "dem", "kn");
-    if (jd.contains("ks")) d.ks = r.number(jd["ks"], "dem", "ks");
-    d.stiffness_reduction = r.number(jd, "dem", "stiffness_reduction", d.stiffness_reduction);
-    d.damping = r.number(jd, "dem", "damping", d.damping);
-    d.timestep_factor = r.number(jd, "dem", "timestep_factor", d.timestep_factor);
-    d.equilibrium_tolerance = r.number(jd, "dem", "equilibrium_tolerance", d.equilibrium_tolerance);
-    d.velocity_tolerance = r.number(jd, "dem", "velocity_tolerance", d.velocity_tolerance);
-    d.hold_time = r.number(jd, "dem", "hold_time", d.hold_time);
-    d.kinetic_ratio = r.number(jd, "dem", "kinetic_ratio", d.kinetic_ratio);
-    d.move_time = r.number(jd, "dem", "move_time", d.move_time);
-    d.bracket_fraction = r.number(jd, "dem", "bracket_fraction", d.bracket_fraction);
-    d.ramp_fraction = r.number(jd, "dem", "ramp_fraction", d.ramp_fraction);
-    d.collapse_drift = r.number(jd, "dem", "collapse_drift", d.collapse_drift);
-    if (jd.contains("open_gap")) d.open_gap = r.number(jd["open_gap"], "dem", "open_gap");
-    d.confirm_collapse = r.boolean(jd, "dem", "confirm_collapse", d.confirm_collapse);
-    const std::string hd = r.string(jd, "dem", "hold_damping", hold_damping_name(d.hold_damping));
-    if (hd == "local") d.hold_damping = HoldDamping::local;
-    else if (hd == "kinetic") d.hold_damping = HoldDamping::kinetic;
-    else r.fail("dem", "field 'hold_damping' must be \"local\" or \"kinetic\", not \"" + printable(hd) + "\"");
-    check_dem(d, r);
-  }
+  if (doc.contains("prd")) read_options(doc["prd"], c.prd, source);
+  if (doc.contains("dem")) read_options(doc["dem"], c.dem, source);
 
   // Orientation: store counter-clockwise.
   for (Block& b : c.blocks)
@@ -448,7 +334,7 @@ std::string case_to_json(const Case& c) {
   doc["format"] = "masonry-case/1";
   doc["name"] = c.name;
   if (!c.description.empty()) doc["description"] = c.description;
-  doc["gravity"] = c.gravity;
+  write_options(doc, c);
   ordered_json blocks = ordered_json::array();
   for (const Block& b : c.blocks) {
     ordered_json jb = ordered_json::object();
@@ -477,32 +363,13 @@ std::string case_to_json(const Case& c) {
                    {"translation", {s.translation.x(), s.translation.y()}},
                    {"rotation", s.rotation},
                    {"about", {s.about.x(), s.about.y()}}});
-  doc["motion"] = {{"step", c.motion.step}, {"max_steps", c.motion.max_steps}, {"supports", sup}};
-  doc["prd"] = {{"contact_tolerance", c.prd.contact_tolerance},
-                {"adaptive", c.prd.adaptive},
-                {"event_tolerance", c.prd.event_tolerance},
-                {"max_step", c.prd.max_step},
-                {"sliding_check", c.prd.sliding_check}};
-  if (!c.prd.hold_closed.empty()) doc["prd"]["hold_closed"] = c.prd.hold_closed;
-  ordered_json dem = {{"young_modulus", c.dem.young_modulus},
-              {"poisson", c.dem.poisson},
-              {"friction_angle", c.dem.friction_angle},
-              {"stiffness_reduction", c.dem.stiffness_reduction},
-              {"damping", c.dem.damping},
-              {"timestep_factor", c.dem.timestep_factor},
-              {"equilibrium_tolerance", c.dem.equilibrium_tolerance},
-              {"velocity_tolerance", c.dem.velocity_tolerance},
-              {"hold_time", c.dem.hold_time},
-              {"kinetic_ratio", c.dem.kinetic_ratio},
-              {"move_time", c.dem.move_time},
-              {"ramp_fraction", c.dem.ramp_fraction},
-              {"collapse_drift", c.dem.collapse_drift},
-              {"bracket_fraction", c.dem.bracket_fraction}};
-  if (c.dem.kn) dem["kn"] = *c.dem.kn;
-  if (c.dem.ks) dem["ks"] = *c.dem.ks;
-  if (c.dem.open_gap) dem["open_gap"] = *c.dem.open_gap;
-  if (c.dem.confirm_collapse) dem["confirm_collapse"] = true;
-  if (c.dem.hold_damping != HoldDamping::local) dem["hold_damping"] = hold_damping_name(c.dem.hold_damping);
+  ordered_json motion = ordered_json::object(), prd = ordered_json::object(), dem = ordered_json::object();
+  write_options(motion, c.motion);
+  motion["supports"] = sup;
+  write_options(prd, c.prd);
+  write_options(dem, c.dem);
+  doc["motion"] = motion;
+  doc["prd"] = prd;
   doc["dem"] = dem;
   return doc.dump(1, ' ') + "\n";
 }
@@ -533,10 +400,10 @@ Case with_option(const Case& c, const std::string& key, const nlohmann::json& va
   return parse_case(doc.dump(), source);
 }
 
-const char* hold_damping_name(HoldDamping h) { return h == HoldDamping::kinetic ? "kinetic" : "local"; }
+const char* hold_damping_name(HoldDamping h) { return kHoldDampingNames[static_cast<size_t>(h)]; }
 
 void check_dem_options(const DemOptions& d, const std::string& source, bool allow_unstable_timestep) {
-  check_dem(d, Reader{source}, allow_unstable_timestep);
+  check_options(d, source, allow_unstable_timestep);
 }
 
 }  // namespace masonry

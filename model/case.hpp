@@ -54,7 +54,8 @@ struct Motion {
 };
 
 // PRD's settings, the case's "prd" section; prd/prd.hpp's PrdSettings adds the motion's increment
-// to them; nothing else declares them.
+// to them; nothing else declares them. Each field's key, range, unit, help and flag are its row in
+// model/options.cpp (as for Motion, DemOptions and Case::gravity).
 struct PrdOptions {
   // Length (m) below which an endpoint's gap counts as closed; also the geometric tolerance of
   // interface detection.
@@ -84,7 +85,9 @@ struct PrdOptions {
 // stopped whenever the structure's kinetic energy passes a peak, so no momentum carries the
 // structure through a hold).
 enum class HoldDamping { local, kinetic };
-const char* hold_damping_name(HoldDamping h);  // "local", "kinetic": the case field's values
+// The case field's values, in the enum's order.
+inline constexpr const char* kHoldDampingNames[] = {"local", "kinetic"};
+const char* hold_damping_name(HoldDamping h);
 
 // The DEM's settings, the case's "dem" section (dem/README.md has the model and the protocol).
 // dem/dem.hpp's DemSettings adds the motion's increment to them; nothing else declares them.

@@ -3,6 +3,7 @@
 // The LP itself (variables and rows) is described at the top of lp.cpp.
 #include <stdexcept>
 
+#include "model/options.hpp"
 #include "prd/glpk_hooks.hpp"
 #include "prd/internal.hpp"
 
@@ -408,14 +409,16 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   r.case_name = c.name;
   Walk w(c, s);
   r.capacity = w.d0;  // a start that is unstable as it stands: no stable configuration beyond it
-  r.settings = {{"step", s.step}, {"max_steps", s.max_steps}, {"contact_tolerance", s.contact_tolerance}};
-  if (!s.hold_closed.empty()) r.settings["hold_closed"] = s.hold_closed;
+  // The motion's increment, every option as the case set it (model/options.cpp), the start, and
+  // where the steps are event-driven, the tolerance and longest step the run derived.
+  set_setting(r.settings, &Motion::step, s.step);
+  set_setting(r.settings, &Motion::max_steps, s.max_steps);
+  r.settings.update(echo_options<PrdOptions>(s));
   if (s.start)
     r.settings["start"] = {{"d", s.start->d}, {"offsets", start_offsets_name(s.start->offsets)}, {"from", s.start->source}};
   if (s.adaptive) {
-    r.settings["adaptive"] = true;
-    r.settings["event_tolerance"] = w.tol_ev;
-    r.settings["max_step"] = w.h_max;
+    set_setting(r.settings, &PrdOptions::event_tolerance, w.tol_ev);
+    set_setting(r.settings, &PrdOptions::max_step, w.h_max);
   }
   r.events.emplace();
   r.joints = joint_infos(w.m);

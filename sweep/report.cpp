@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "model/version.hpp"
+#include "model/options.hpp"
 #include "report/document.hpp"
 #include "report/escape.hpp"
 #include "report/format.hpp"
@@ -32,7 +33,7 @@ double x_of(const SweepPlan& p, const SweepSummary& s, int run) {
     if (p.keys[k] == s.x) return p.runs[run].values[k].get<double>();
   return NAN;
 }
-bool friction_x(const SweepSummary& s) { return s.x == "dem.friction_angle"; }
+bool friction_x(const SweepSummary& s) { return s.x == option_key(&DemOptions::friction_angle); }
 
 // The PRD run every point of a curve refers to, when it is one run (x is a DEM option).
 const SweepRow* curve_prd(const SweepPlan& p, const SweepTable& t, const SweepCurve& c) {

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "model/options.hpp"
 #include "runs/run.hpp"
 #include "sweep/runner.hpp"
 
@@ -27,7 +28,7 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run, bool keep) {
     const Case own = case_of_run(p, run);
     // PRD runs carry the sliding check, so the report can set its prediction beside the DEM
     // (unless the sweep file's "set" turns it off).
-    const Case c = m == Method::prd && p.sliding_check ? with_option(own, "prd.sliding_check", true) : own;
+    const Case c = m == Method::prd && p.sliding_check ? with_option(own, option_key(&PrdOptions::sliding_check), true) : own;
     const RunResult r = run_case_in_study(c, m);
     row.hinges = hinges_at_collapse(c, r);
     // The case as the run's row names it (without the PRD's sliding check, a setting): what

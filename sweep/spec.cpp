@@ -13,6 +13,7 @@
 #include "cases/parameters.hpp"
 #include "model/fields.hpp"
 #include "model/io.hpp"
+#include "model/options.hpp"
 #include "sweep/runner.hpp"
 
 namespace masonry {
@@ -434,7 +435,7 @@ SweepPlan plan_sweep(const SweepSpec& spec, const Case& c) {
       r.fail("set '" + key + "'", e.what());
     }
     p.options.emplace_back(key, value);
-    if (key == "prd.sliding_check") p.sliding_check = p.base.prd.sliding_check;
+    if (key == option_key(&PrdOptions::sliding_check)) p.sliding_check = p.base.prd.sliding_check;
   }
   const std::string base_text = case_to_json(p.base);
   // Whether the case takes a value of a key: a generator builds its case, a case option loads.

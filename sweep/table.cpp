@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "model/options.hpp"
 #include "sweep/runner.hpp"
 
 namespace masonry {
@@ -70,8 +71,8 @@ double path_end(const SweepPlan& p, const SweepRun& run) {
   double step = p.base.motion.step, steps = p.base.motion.max_steps;
   for (size_t k = 0; k < p.keys.size(); ++k) {
     if (!run.values[k].is_number()) continue;
-    if (p.keys[k] == "motion.step") step = run.values[k].get<double>();
-    if (p.keys[k] == "motion.max_steps") steps = run.values[k].get<double>();
+    if (p.keys[k] == option_key(&Motion::step)) step = run.values[k].get<double>();
+    if (p.keys[k] == option_key(&Motion::max_steps)) steps = run.values[k].get<double>();
   }
   return step * steps * (1 + 1e-9);
 }
@@ -226,7 +227,7 @@ SweepSummary summarize(const SweepPlan& p, const SweepTable& t) {
   const Method method = has_dem ? Method::dem : Method::prd;
   int xk = -1;
   for (size_t k = 0; k < p.keys.size() && xk < 0; ++k)
-    if (p.keys[k] == "dem.friction_angle" && has_dem) xk = int(k);
+    if (p.keys[k] == option_key(&DemOptions::friction_angle) && has_dem) xk = int(k);
   for (size_t k = 0; k < p.keys.size() && xk < 0; ++k) {
     bool numeric = true;
     for (const SweepRun& r : p.runs) numeric = numeric && (r.method != method || r.values[k].is_number());
@@ -252,7 +253,7 @@ SweepSummary summarize(const SweepPlan& p, const SweepTable& t) {
   for (SweepCurve& c : s.curves) {
     std::stable_sort(c.runs.begin(), c.runs.end(),
                      [&](int a, int b) { return p.runs[a].values[xk].get<double>() < p.runs[b].values[xk].get<double>(); });
-    if (s.x != "dem.friction_angle") continue;
+    if (s.x != option_key(&DemOptions::friction_angle)) continue;
     // Largest friction angle at which DEM and PRD differ by more than the tolerance.
     std::vector<std::pair<double, bool>> differ;  // (angle, |diff| > tolerance)
     for (int i : c.runs)

@@ -3,9 +3,11 @@
 // nothing but warnings and why it failed, and progress lines give the time left.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 
 #include "common.hpp"
+#include "model/options.hpp"
 
 namespace masonry {
 namespace {
@@ -95,6 +97,29 @@ TEST(CommandLine, SupportsThatDoNotMoveAreRefused) {
   EXPECT_EQ(r.rc, 2) << r.err;
   EXPECT_NE(r.err.find("no support moves"), std::string::npos) << r.err;
   EXPECT_EQ(run("check " + (dir.path / "still.json").string(), dir).rc, 0);
+}
+
+// Every flag the options' table gives a command is in that command's help, with the option's key.
+TEST(CommandLine, EveryOptionFlagIsOnItsCommands) {
+  Scratch dir("cli-option-flags");
+  const auto help_of = [&](const std::string& sub) {
+    const std::string out = (dir.path / "help").string();
+    EXPECT_EQ(test::run(kExe + " " + sub + " --help >" + out + " 2>&1"), 0) << sub;
+    return test::read(out);
+  };
+  std::map<OptionCommand, std::string> help;
+  for (OptionCommand k : {OptionCommand::prd, OptionCommand::dem, OptionCommand::compare}) help[k] = help_of(option_command_name(k));
+  int flags = 0;
+  for (const OptionInfo& i : option_infos())
+    for (OptionCommand k : i.commands) {
+      ++flags;
+      EXPECT_NE(help[k].find(std::string(i.flag) + " "), std::string::npos) << i.flag << " not on " << option_command_name(k);
+      EXPECT_NE(help[k].find("case: " + i.key), std::string::npos) << i.key << " not in the help of " << option_command_name(k);
+    }
+  EXPECT_GE(flags, 20);
+  const std::string check = help_of("check");
+  EXPECT_NE(check.find("case: " + option_key(&PrdOptions::contact_tolerance)), std::string::npos) << check;
+  EXPECT_NE(check.find("case: " + option_key(&PrdOptions::hold_closed)), std::string::npos) << check;
 }
 
 }  // namespace
