@@ -98,9 +98,9 @@ void add_case_commands(CLI::App& app, Commands& out) {
   {
     auto p = std::make_shared<BrickWall>();
     auto openings = std::make_shared<std::vector<std::string>>();
-    CLI::App* g = cmd->add_subcommand(
-        "wall", "Brick wall in running, stack or header bond, with openings under lintels or arches, on two ground blocks; "
-                "one settles or turns (cases/README.md, 'Brick wall')");
+    CLI::App* g = cmd->add_subcommand("wall",
+                                      "Brick wall in running, stack or header bond, with openings under lintels or arches, on two ground blocks; "
+                                      "one settles or turns (cases/README.md, 'Brick wall')");
     g->add_option("--out,-o", *file, "Case file to write ('-': standard output)")->required();
     g->add_option("--bond", p->bond, "running, stack or header")
         ->transform(CLI::CheckedTransformer(
@@ -109,8 +109,7 @@ void add_case_commands(CLI::App& app, Commands& out) {
     g->add_option("--courses", p->courses, "Number of courses")->capture_default_str();
     g->add_option("--bricks", p->bricks, "Units per course: stretchers, or headers in header bond")->capture_default_str();
     g->add_option("--brick-length", p->brick_length, "Stretcher length, m")->capture_default_str();
-    g->add_option("--header-length", p->header_length, "Header face length (the brick's width), m; header bond")
-        ->capture_default_str();
+    g->add_option("--header-length", p->header_length, "Header face length (the brick's width), m; header bond")->capture_default_str();
     g->add_option("--course-height", p->course_height, "Course height, m")->capture_default_str();
     g->add_option("--depth", p->depth, "Out-of-plane thickness of the wall, m")->capture_default_str();
     g->add_option("--density", p->density, "Density, kg/m3")->capture_default_str();
@@ -119,17 +118,15 @@ void add_case_commands(CLI::App& app, Commands& out) {
                   "nearest course joint; default top: lintel); repeatable");
     g->add_option("--lintel-bearing", p->lintel_bearing, "A lintel's bearing on each side of its opening, m")->capture_default_str();
     g->add_option("--arch-thickness", p->arch_thickness, "Thickness of an arch's ring, m")->capture_default_str();
-    g->add_option("--arch-voussoirs", p->arch_voussoirs, "Voussoirs of each arch (0: about one per course height)")
-        ->capture_default_str();
+    g->add_option("--arch-voussoirs", p->arch_voussoirs, "Voussoirs of each arch (0: about one per course height)")->capture_default_str();
     g->add_option("--ground-height", p->ground_height, "Height of the two ground blocks, m")->capture_default_str();
     g->add_option("--ground-split", p->ground_split, "Where the ground splits, m from the wall's left end (default: the middle)");
     g->add_option("--moving", p->moving, "Which ground block moves: left, right or none")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, MovingGround>{
-            {"none", MovingGround::none}, {"left", MovingGround::left}, {"right", MovingGround::right}}))
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, MovingGround>{{"none", MovingGround::none}, {"left", MovingGround::left}, {"right", MovingGround::right}}))
         ->default_str("right");
     g->add_option("--settlement-step", p->settlement_step, "Settlement of the moving ground per step, m (down)")->capture_default_str();
-    g->add_option("--rotation-step", p->rotation_step,
-                  "Counter-clockwise rotation of the moving ground per step, rad, about the split's top point")
+    g->add_option("--rotation-step", p->rotation_step, "Counter-clockwise rotation of the moving ground per step, rad, about the split's top point")
         ->capture_default_str();
     g->add_option("--step", p->step, "Path parameter d per step, m")->capture_default_str();
     g->add_option("--max-steps", p->max_steps, "Largest number of steps")->capture_default_str();
@@ -148,9 +145,10 @@ void add_case_commands(CLI::App& app, Commands& out) {
   auto imp = std::make_shared<DxfImportOptions>();
   auto drawing = std::make_shared<std::string>();
   auto import_out = std::make_shared<std::string>();
-  CLI::App* import_cmd = cmd->add_subcommand(
-      "import", "A DXF drawing's closed polylines as a case: layer SUPPORT* supports, IGNORE* skipped, others free blocks "
-                "(cases/README.md, 'Importing a drawing')");
+  CLI::App* import_cmd =
+      cmd->add_subcommand("import",
+                          "A DXF drawing's closed polylines as a case: layer SUPPORT* supports, IGNORE* skipped, others free blocks "
+                          "(cases/README.md, 'Importing a drawing')");
   import_cmd->add_option("drawing", *drawing, "DXF drawing (ASCII)")->required();
   import_cmd->add_option("--out,-o", *import_out, "Case file to write ('-': standard output)")->required();
   import_cmd->add_option("--units", imp->units, "Drawing units: m, cm, mm, in, ft (default: the drawing's $INSUNITS)");
@@ -162,8 +160,7 @@ void add_case_commands(CLI::App& app, Commands& out) {
   import_cmd->add_option("--arc-tolerance", imp->arc_tolerance, "Arcs (polyline bulges) become chords within this distance, m")
       ->capture_default_str();
   import_cmd->add_option("--snap", imp->snap, "Move vertices within this distance of another block onto it, m (default 0: off)");
-  import_cmd->add_option("--near-joint", imp->near_joint, "Report blocks that come this close without touching, m")
-      ->capture_default_str();
+  import_cmd->add_option("--near-joint", imp->near_joint, "Report blocks that come this close without touching, m")->capture_default_str();
   // Draw a case.
   auto shown = std::make_shared<std::string>();
   auto svg = std::make_shared<std::string>();
@@ -187,8 +184,7 @@ void add_case_commands(CLI::App& app, Commands& out) {
                      std::cout << "generators and standard scenes (masonry cases NAME --out FILE; NAME --help):\n";
                      for (const GeneratorCommand& g : *gens) std::cout << "  " << g.name << "\n      " << g.summary << "\n";
                      std::cout << "standard scenes checked in under cases/:\n";
-                     for (const StandardCase& s : standard_cases())
-                       std::cout << "  " << s.name << ".json: " << s.summary << "\n";
+                     for (const StandardCase& s : standard_cases()) std::cout << "  " << s.name << ".json: " << s.summary << "\n";
                      return 0;
                    }
                    for (const GeneratorCommand& g : *gens)

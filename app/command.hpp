@@ -26,13 +26,13 @@ struct Command {
 };
 using Commands = std::vector<Command>;
 
-void add_prd_commands(CLI::App& app, Commands& out);    // app/prd_commands.cpp: prd, check
-void add_case_commands(CLI::App& app, Commands& out);   // app/cases_commands.cpp: cases
-void add_dem_commands(CLI::App& app, Commands& out);    // app/dem_commands.cpp: dem
-void add_compare_commands(CLI::App& app, Commands& out);  // app/compare_commands.cpp: compare, demo
-void add_sweep_commands(CLI::App& app, Commands& out);    // app/sweep_commands.cpp: sweep
-void add_tradeoff_commands(CLI::App& app, Commands& out); // app/tradeoff_commands.cpp: tradeoff
-void add_validate_commands(CLI::App& app, Commands& out); // app/validate_commands.cpp: validate
-void add_option_commands(CLI::App& app, Commands& out);   // app/options_commands.cpp: options
+void add_prd_commands(CLI::App& app, Commands& out);       // app/prd_commands.cpp: prd, check
+void add_case_commands(CLI::App& app, Commands& out);      // app/cases_commands.cpp: cases
+void add_dem_commands(CLI::App& app, Commands& out);       // app/dem_commands.cpp: dem
+void add_compare_commands(CLI::App& app, Commands& out);   // app/compare_commands.cpp: compare, demo
+void add_sweep_commands(CLI::App& app, Commands& out);     // app/sweep_commands.cpp: sweep
+void add_tradeoff_commands(CLI::App& app, Commands& out);  // app/tradeoff_commands.cpp: tradeoff
+void add_validate_commands(CLI::App& app, Commands& out);  // app/validate_commands.cpp: validate
+void add_option_commands(CLI::App& app, Commands& out);    // app/options_commands.cpp: options
 
 }  // namespace masonry

@@ -29,8 +29,8 @@ namespace {
 struct CompareOpts {
   std::string case_path, out_dir, tolerances, notes;
   std::vector<double> frictions;
-  std::vector<std::string> runs;  // existing result directories instead of running
-  CaseFlags settings;               // the flags that set case options, for both methods
+  std::vector<std::string> runs;   // existing result directories instead of running
+  CaseFlags settings;              // the flags that set case options, for both methods
   std::optional<double> dem_step;  // motion.step of the DEM runs only
   int frames = 0;
   bool quiet = false;
@@ -157,10 +157,10 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     // fmt: "n/a", never "nan", for what a run's results do not give (an outside solver's timing).
     const char* unit = cmp.d_unit.c_str();
     if (!o.quiet)
-      std::fprintf(stderr, "compare: %s: %s %.4g %s, %s %.4g %s (%s), thrust difference max %s W rms %s W, times %s s / %s s\n",
-                   c.name.c_str(), cmp.a.label.c_str(), cmp.a.capacity, unit, cmp.b.label.c_str(), cmp.b.capacity, unit,
-                   fmt::pct(cmp.capacity_rel_diff).c_str(), fmt::g(cmp.thrust_max_diff).c_str(), fmt::g(cmp.thrust_rms_diff).c_str(),
-                   fmt::g(cmp.a.time_s).c_str(), fmt::g(cmp.b.time_s).c_str());
+      std::fprintf(stderr, "compare: %s: %s %.4g %s, %s %.4g %s (%s), thrust difference max %s W rms %s W, times %s s / %s s\n", c.name.c_str(),
+                   cmp.a.label.c_str(), cmp.a.capacity, unit, cmp.b.label.c_str(), cmp.b.capacity, unit, fmt::pct(cmp.capacity_rel_diff).c_str(),
+                   fmt::g(cmp.thrust_max_diff).c_str(), fmt::g(cmp.thrust_rms_diff).c_str(), fmt::g(cmp.a.time_s).c_str(),
+                   fmt::g(cmp.b.time_s).c_str());
     for (const std::string& v : rep.violations[k]) std::cerr << "compare: limit exceeded: " << v << "\n";
     failed = failed || !rep.violations[k].empty();
   }
@@ -173,7 +173,8 @@ void add_common_options(CLI::App* sub, CompareOpts& o) {
   o.settings.add(sub, OptionCommand::compare);
   sub->add_option("--dem-step", o.dem_step, "DEM increment of d only, m (default: --step)")->check(CLI::PositiveNumber);
   sub->add_option("--frames", o.frames, "Slider positions in report.html (default 60, 24 for scenes over 60 blocks)")->check(CLI::NonNegativeNumber);
-  sub->add_option("--tolerances", o.tolerances, "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true, \"hinge_shift\": 1}: exit code 1 when one is exceeded");
+  sub->add_option("--tolerances", o.tolerances,
+                  "JSON limits {\"capacity\": 0.05, \"thrust\": 0.10, \"hinges\": true, \"hinge_shift\": 1}: exit code 1 when one is exceeded");
   sub->add_option("--notes", o.notes,
                   "Plain-text file of the author's notes on the result (paragraphs separated by blank lines), shown after the "
                   "tolerance checks, e.g. the mechanical reason a check fails");
@@ -188,8 +189,10 @@ void add_compare_commands(CLI::App& app, Commands& out) {
     CLI::App* sub = app.add_subcommand("compare", "Run PRD and DEM on one case and write comparison.json, report.md and report.html");
     sub->add_option("case", o->case_path, "Case file (masonry-case/1 JSON)")->required();
     sub->add_option("--out", o->out_dir, "Output directory: prd/, dem/, comparison.json, report.md, report.html, figures/")->required();
-    sub->add_option("--friction", o->frictions, "DEM friction angle(s), degrees: one DEM run per value, each compared with the PRD run (default: the case's)");
-    sub->add_option("--runs", o->runs, "Compare finished runs instead of running: result directories (each with results.json), the first is the reference");
+    sub->add_option("--friction", o->frictions,
+                    "DEM friction angle(s), degrees: one DEM run per value, each compared with the PRD run (default: the case's)");
+    sub->add_option("--runs", o->runs,
+                    "Compare finished runs instead of running: result directories (each with results.json), the first is the reference");
     add_common_options(sub, *o);
     out.push_back({sub, [o]() {
                      const Case c = o->settings.apply(load_case(o->case_path));

@@ -52,15 +52,18 @@ std::vector<RunResult> study_runs(const Case& c, Study kind, const std::vector<D
       continue;
     }
     const std::string path = (std::filesystem::path(o.out_dir) / variants[i].name / "results.json").string();
-    if (!std::filesystem::exists(path)) throw std::invalid_argument(std::string("dem ") + study_name(kind) + ": " + path + " is missing: run the whole study first");
+    if (!std::filesystem::exists(path))
+      throw std::invalid_argument(std::string("dem ") + study_name(kind) + ": " + path + " is missing: run the whole study first");
     runs[i] = load_results(path, c);
-    if (runs[i].status == RunStatus::running) throw std::invalid_argument(std::string("dem ") + study_name(kind) + ": " + path + " is a run that did not finish");
+    if (runs[i].status == RunStatus::running)
+      throw std::invalid_argument(std::string("dem ") + study_name(kind) + ": " + path + " is a run that did not finish");
   }
   // to_run is in variants' order, and so is rerun once sorted.
   std::sort(rerun.begin(), rerun.end());
   rerun.erase(std::unique(rerun.begin(), rerun.end()), rerun.end());
-  const std::vector<RunResult> fresh =
-      run_variants(c, to_run, o.jobs, o.out_dir, [&](size_t k, const RunResult& r) { if (on_done) on_done(rerun[k], r); });
+  const std::vector<RunResult> fresh = run_variants(c, to_run, o.jobs, o.out_dir, [&](size_t k, const RunResult& r) {
+    if (on_done) on_done(rerun[k], r);
+  });
   for (size_t k = 0; k < rerun.size(); ++k) runs[rerun[k]] = fresh[k];
   return runs;
 }
@@ -131,15 +134,15 @@ void add_dem_commands(CLI::App& app, Commands& out) {
   sub->add_flag("--stiffness-study", o->stiffness_study,
                 "Joint-stiffness study: the run at these settings and with kn, ks x1/10, x1/3, x3, x10, x30 (dem/README.md), "
                 "DIR/stiffness.{json,md}, each run in DIR/<variant>/, each run's mechanism against PRD's; a measurement with no "
-                "limits: exit code 1 only when a run does not finish")->excludes("--convergence");
+                "limits: exit code 1 only when a run does not finish")
+      ->excludes("--convergence");
   sub->add_option("--jobs", o->jobs, "A study: runs at a time, one thread each (default 2)")->check(CLI::PositiveNumber);
   sub->add_option("--spread-limit", o->spread_limit, "Convergence study: largest (max - min) / default capacity (default 0.02)");
   sub->add_option("--prd-limit", o->prd_limit, "Convergence study: largest |default - PRD| / PRD capacity (default 0.03)");
   sub->add_option("--only", o->only,
                   "A study: run only these variants again and read the others back from DIR/<variant>/results.json "
                   "(of a study run with the same binary and settings: the results do not say which code made them)");
-  sub->add_flag("--read-back", o->read_back,
-                "A study: run no variant, read them all back from DIR/<variant>/results.json and write the study again");
+  sub->add_flag("--read-back", o->read_back, "A study: run no variant, read them all back from DIR/<variant>/results.json and write the study again");
   out.push_back({sub, [o]() {
                    const Case c = o->settings.apply(load_case(o->case_path));
                    const DemSettings s = DemSettings::from_case(c);
@@ -147,12 +150,10 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    if (o->convergence) return run_study(c, s, Study::convergence, *o);
                    if (o->stiffness_study) return run_study(c, s, Study::stiffness, *o);
                    RunProgress progress("dem", s.step * s.max_steps, 0.0, dem_step_detail, path_unit(c));
-                   const RunResult r =
-                       run_dem(c, s, {o->out_dir, o->quiet ? std::function<void(const RunResult&)>() : std::ref(progress)});
+                   const RunResult r = run_dem(c, s, {o->out_dir, o->quiet ? std::function<void(const RunResult&)>() : std::ref(progress)});
                    if (!o->quiet)
-                     std::fprintf(stderr, "dem: %s, capacity %.6g %s after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n",
-                                  status_name(r.status), r.capacity, path_unit(c).c_str(), r.stable_steps, r.timing.cycles, r.timing.total_s,
-                                  r.settings.value("dt", 0.0));
+                     std::fprintf(stderr, "dem: %s, capacity %.6g %s after %d stable steps, %lld cycles, %.3g s (dt %.3g s)\n", status_name(r.status),
+                                  r.capacity, path_unit(c).c_str(), r.stable_steps, r.timing.cycles, r.timing.total_s, r.settings.value("dt", 0.0));
                    if (!located(r.status)) std::fprintf(stderr, "dem: %s\n", r.message.c_str());
                    return exit_code(r.status);
                  }});

@@ -27,9 +27,12 @@ CLI::Option* CaseFlags::add(CLI::App* sub, const OptionInfo& i, const std::strin
   // "Friction angle of the joints, deg (case: dem.friction_angle, default 35, in [0, 90]; 90: no slip limit)"
   std::string text = prefix + i.help + (*i.unit ? std::string(", ") + i.unit : "") + " (case: " + i.key;
   if (!i.default_text.empty()) text += ", default " + i.default_text;
-  if (i.type == OptionType::number || i.type == OptionType::integer) text += ", in " + i.range_text;
-  else if (i.type == OptionType::word) text += "; " + i.range_text;
-  else if (i.type == OptionType::words) text += "; " + i.range_text + "; repeatable";
+  if (i.type == OptionType::number || i.type == OptionType::integer)
+    text += ", in " + i.range_text;
+  else if (i.type == OptionType::word)
+    text += "; " + i.range_text;
+  else if (i.type == OptionType::words)
+    text += "; " + i.range_text + "; repeatable";
   if (*i.note) text += std::string("; ") + i.note;
   text += ")";
   switch (i.type) {

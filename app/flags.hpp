@@ -23,7 +23,7 @@ class CaseFlags {
   void add(CLI::App* sub, OptionCommand command);
   // Adds one option's flag, for a command that takes only some (`check --tolerance`).
   template <class S, class T>
-  CLI::Option* add(CLI::App* sub, T S::* member) {
+  CLI::Option* add(CLI::App* sub, T S::*member) {
     return add(sub, info(option_key(member)), "");
   }
   // The case with every given flag applied, in the order they were added. Throws CaseError.

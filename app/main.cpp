@@ -1,10 +1,10 @@
 #include <exception>
 #include <iostream>
 
-#include "model/case.hpp"
-#include "model/version.hpp"
 #include "app/command.hpp"
 #include "app/suggest.hpp"
+#include "model/case.hpp"
+#include "model/version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"masonry: PRD limit analysis and rigid-block DEM of masonry structures, side by side"};

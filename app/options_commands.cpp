@@ -31,8 +31,10 @@ void add_option_commands(CLI::App& app, Commands& out) {
   CLI::App* sub = app.add_subcommand("options", "Every case option: key, type, default, range, unit, flag and meaning");
   sub->add_flag("--markdown", *markdown, "As the Markdown table of README.md (\"Options\")");
   out.push_back({sub, [markdown]() {
-                   if (*markdown) std::cout << options_markdown();
-                   else print_options();
+                   if (*markdown)
+                     std::cout << options_markdown();
+                   else
+                     print_options();
                    return kExitDone;
                  }});
 }

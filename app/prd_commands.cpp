@@ -4,8 +4,8 @@
 #include <functional>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "app/command.hpp"
 #include "app/flags.hpp"
@@ -28,8 +28,8 @@ void report_held(const RunResult& r) {
     for (const HeldCorner& h : s.held_corners)
       if (h.force < least) least = h.force, at = s.d, which = h.corner;
   if (which.empty()) return;
-  std::cerr << "prd: held corners: the least force in the LP's force state is " << least << " N (" << which << ", d = " << at
-            << " m)" << (least < 0 ? ": negative, the force state pulls there (a tension)" : "") << "\n";
+  std::cerr << "prd: held corners: the least force in the LP's force state is " << least << " N (" << which << ", d = " << at << " m)"
+            << (least < 0 ? ": negative, the force state pulls there (a tension)" : "") << "\n";
 }
 
 // Warns, before the LP is built, when the case is large enough for the analysis to take a
@@ -68,8 +68,7 @@ int print_first_step(const Case& c, double h, bool as_json) {
     std::cout << printable(c.name) << ": unbounded: the structure collapses at d = 0\n";
     return kExitDone;
   }
-  std::cout << printable(c.name) << ": a first step of " << h << " m changes the loads' potential energy by " << f.energy_change
-            << " J; it opens:\n";
+  std::cout << printable(c.name) << ": a first step of " << h << " m changes the loads' potential energy by " << f.energy_change << " J; it opens:\n";
   for (const FirstStep::Opening& o : f.opening) std::cout << "  " << printable(o.corner) << "  " << o.opening * 1e3 << " mm\n";
   return kExitDone;
 }
@@ -119,7 +118,8 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     sub->add_option("--elastic", *offsets,
                     "With --from: a closed corner's offset there (a DEM's elastic overlap and shear) is kept as the joint's geometry "
                     "(keep, the default) or taken back over the first step (take-back)")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, StartOffsets>{{"keep", StartOffsets::keep}, {"take-back", StartOffsets::take_back}}))
+        ->transform(
+            CLI::CheckedTransformer(std::map<std::string, StartOffsets>{{"keep", StartOffsets::keep}, {"take-back", StartOffsets::take_back}}))
         ->needs(from_opt);
     out.push_back({sub, [=]() {
                      const Case c = settings->apply(load_case(*path));
@@ -135,8 +135,8 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                                  << r.timing.total_s << " s (" << r.timing.lp_solves << " LPs); results in " << *dir << "\n";
                      if (r.sliding && r.sliding->any) {
                        std::cerr << "prd: sliding check: some admissible force state avoids sliding at every step for friction angles above "
-                                 << r.sliding->required_friction_angle << " deg (the most demanding: d = " << r.sliding->d
-                                 << " m, joint " << r.sliding->joint << ")\n";
+                                 << r.sliding->required_friction_angle << " deg (the most demanding: d = " << r.sliding->d << " m, joint "
+                                 << r.sliding->joint << ")\n";
                      }
                      report_held(r);
                      if (*friction >= 0) {
@@ -145,11 +145,10 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                        // certain, whatever the force distribution).
                        for (bool required : {false, true}) {
                          const auto e = first_sliding(c, r, *friction, required);
-                         std::cerr << "prd: " << (required ? "every admissible force state" : "the dual force state")
-                                   << " needs more than " << *friction << " deg of friction ";
+                         std::cerr << "prd: " << (required ? "every admissible force state" : "the dual force state") << " needs more than "
+                                   << *friction << " deg of friction ";
                          if (e)
-                           std::cerr << "first at step " << e->step << ", d = " << e->d << " m, joint " << e->blocks << " ("
-                                     << e->angle << " deg)\n";
+                           std::cerr << "first at step " << e->step << ", d = " << e->d << " m, joint " << e->blocks << " (" << e->angle << " deg)\n";
                          else
                            std::cerr << "at no step\n";
                        }

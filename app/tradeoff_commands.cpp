@@ -58,8 +58,7 @@ void apply_vary(Plan& plan, const std::string& text, const std::vector<Method>& 
     if (!parse_method(only)) throw std::runtime_error("--vary " + text + ": unknown method '" + only + "' (prd, dem)");
   }
   const size_t e = rest.find('=');
-  if (e == std::string::npos || e == 0 || e + 1 == rest.size())
-    throw std::runtime_error("--vary " + text + ": expected [METHOD:]KEY=V1,V2,...");
+  if (e == std::string::npos || e == 0 || e + 1 == rest.size()) throw std::runtime_error("--vary " + text + ": expected [METHOD:]KEY=V1,V2,...");
   const std::string key = rest.substr(0, e);
   std::vector<nlohmann::json> values;
   std::stringstream list(rest.substr(e + 1));
@@ -123,8 +122,8 @@ int run_tradeoff_command(const TradeoffOpts& o) {
   if (!o.quiet || o.dry_run) {
     std::cerr << "tradeoff: " << runs.size() << " settings on " << base.name << ":\n";
     for (const PlannedRun& p : runs)
-      std::cerr << "  " << method_name(p.setting.method) << "  " << p.setting.label << (p.repeat > 1 ? "  x" + std::to_string(p.repeat) : "")
-                << "  (" << p.id << ")\n";
+      std::cerr << "  " << method_name(p.setting.method) << "  " << p.setting.label << (p.repeat > 1 ? "  x" + std::to_string(p.repeat) : "") << "  ("
+                << p.id << ")\n";
   }
   if (o.dry_run) {
     // Each run's case file, so a setting can be run (or resumed) by hand.
@@ -184,8 +183,10 @@ void add_tradeoff_commands(CLI::App& app, Commands& out) {
   sub->add_option("--runs-dir", o->runs_dir, "Where each run's case.json, results.json and steps.csv go (default OUT/runs)");
   sub->add_flag("--resume", o->resume, "Reuse a finished run in the runs directory whose case.json is the setting's");
   sub->add_flag("--dry-run", o->dry_run, "List the settings and write their case files; run nothing");
-  sub->add_option("--target-capacity", o->target_capacity, "Capacity error counted as good enough in the summary (default 0.01)")->check(CLI::PositiveNumber);
-  sub->add_option("--target-thrust", o->target_thrust, "Thrust error (/ W) counted as good enough in the summary (default 0.01)")->check(CLI::PositiveNumber);
+  sub->add_option("--target-capacity", o->target_capacity, "Capacity error counted as good enough in the summary (default 0.01)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--target-thrust", o->target_thrust, "Thrust error (/ W) counted as good enough in the summary (default 0.01)")
+      ->check(CLI::PositiveNumber);
   sub->add_flag("--quiet", o->quiet, "No progress lines and no summary: only warnings and why the exit code is not 0");
   out.push_back({sub, [o]() { return run_tradeoff_command(*o); }});
 }

@@ -53,8 +53,8 @@ std::string command_line(const Opts& o) {
 
 void add_validate_commands(CLI::App& app, Commands& out) {
   auto o = std::make_shared<Opts>();
-  CLI::App* sub = app.add_subcommand(
-      "validate", "Benchmarks with answers from outside the code (closed forms, published results), run on PRD and the DEM");
+  CLI::App* sub =
+      app.add_subcommand("validate", "Benchmarks with answers from outside the code (closed forms, published results), run on PRD and the DEM");
   sub->add_flag("--quick", o->quick, "Only the benchmarks marked quick (under a minute; CI runs these)");
   sub->add_option("--only", o->only, "Only these benchmarks (names, see --list)");
   sub->add_option("--json", o->json, "Write the rows to this JSON file (masonry-validation/1)");
@@ -75,8 +75,7 @@ void add_validate_commands(CLI::App& app, Commands& out) {
   out.push_back({sub, [o]() {
                    const Catalogue cat = o->catalogue.empty() ? builtin_catalogue() : load_catalogue(o->catalogue);
                    if (o->list) {
-                     for (const Benchmark& b : cat.benchmarks)
-                       std::cout << b.name << (b.quick ? " (quick)" : "") << ": " << b.title << "\n";
+                     for (const Benchmark& b : cat.benchmarks) std::cout << b.name << (b.quick ? " (quick)" : "") << ": " << b.title << "\n";
                      return 0;
                    }
                    const std::vector<const Benchmark*> todo = chosen_benchmarks(cat, o->quick, o->only);
@@ -93,13 +92,16 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                    RunCache cache;
                    const StudyProgress progress("validate", todo.size());
                    for (size_t k = 0; k < todo.size(); ++k) {
-                     const auto part = run_benchmark(cat, *todo[k], cache, [&](const ValidationRow& r) {
-                       if (o->quiet) return;
-                       const char* verdict = !r.applicable ? "n/a" : r.pass ? "pass" : r.solver_error ? "ERROR" : "FAIL";
-                       char b[48];
-                       std::snprintf(b, sizeof b, ": %s in %.2f s", verdict, r.seconds);
-                       std::cerr << progress.line(k + 1, r.benchmark->name + " (" + r.method_label + ")" + b) << "\n" << std::flush;
-                     }, solver ? &*solver : nullptr);
+                     const auto part = run_benchmark(
+                         cat, *todo[k], cache,
+                         [&](const ValidationRow& r) {
+                           if (o->quiet) return;
+                           const char* verdict = !r.applicable ? "n/a" : r.pass ? "pass" : r.solver_error ? "ERROR" : "FAIL";
+                           char b[48];
+                           std::snprintf(b, sizeof b, ": %s in %.2f s", verdict, r.seconds);
+                           std::cerr << progress.line(k + 1, r.benchmark->name + " (" + r.method_label + ")" + b) << "\n" << std::flush;
+                         },
+                         solver ? &*solver : nullptr);
                      rows.insert(rows.end(), part.begin(), part.end());
                      // Finished rows are kept even when a later benchmark fails or the run is stopped.
                      if (!o->json.empty()) write_file_atomic(o->json, validation_json(cat, rows).dump(1) + "\n");

@@ -8,14 +8,12 @@
 
 #include <string>
 
-#include "model/case.hpp"
 #include "dem/dem.hpp"
+#include "model/case.hpp"
 
 namespace {
 
-masonry::Case standard(const std::string& name) {
-  return masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json");
-}
+masonry::Case standard(const std::string& name) { return masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json"); }
 
 // Cycles of the model under gravity, after `warmup` cycles so the joints are loaded and every
 // contact pair has its manifold (the first cycles are not typical: nothing touches yet). The
@@ -37,16 +35,12 @@ void cycles(benchmark::State& state, const std::string& name, double stiffness_r
   state.counters["blocks"] = static_cast<double>(c.blocks.size());
   state.counters["s_per_cycle"] =
       benchmark::Counter(static_cast<double>(per_iteration), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  state.counters["s_per_point_cycle"] = benchmark::Counter(
-      static_cast<double>(per_iteration) * points, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["s_per_point_cycle"] =
+      benchmark::Counter(static_cast<double>(per_iteration) * points, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 // The pointed arch at the paper's settings (stiffness / 10), the cathedral at the case's.
-BENCHMARK_CAPTURE(cycles, dem_pointed_arch, std::string("pointed-arch"), 10.0, 20000)
-    ->Arg(20000)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(cycles, dem_cathedral_settlement, std::string("cathedral-settlement"), 1.0, 5000)
-    ->Arg(2000)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(cycles, dem_pointed_arch, std::string("pointed-arch"), 10.0, 20000)->Arg(20000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(cycles, dem_cathedral_settlement, std::string("cathedral-settlement"), 1.0, 5000)->Arg(2000)->Unit(benchmark::kMillisecond);
 
 }  // namespace

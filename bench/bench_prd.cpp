@@ -16,9 +16,7 @@
 
 namespace {
 
-masonry::Case standard(const std::string& name) {
-  return masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json");
-}
+masonry::Case standard(const std::string& name) { return masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json"); }
 
 void count_run(benchmark::State& state, const masonry::RunResult& r, double first_lp_s) {
   state.counters["capacity_m"] = r.capacity;
@@ -71,12 +69,10 @@ BENCHMARK_CAPTURE(single_analysis, pointed_arch, std::string("pointed-arch"))->U
 BENCHMARK_CAPTURE(capacity_run, pointed_arch, std::string("pointed-arch"), false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(single_analysis, cathedral, std::string("cathedral-settlement"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(capacity_run, cathedral_settlement, std::string("cathedral-settlement"), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_rotation, std::string("cathedral-settlement-rotation"), false)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_rotation, std::string("cathedral-settlement-rotation"), false)->Unit(benchmark::kMillisecond);
 // Event-driven runs (--adaptive): the same capacities, events located to 1e-4 of the scene.
 BENCHMARK_CAPTURE(capacity_run, pointed_arch_adaptive, std::string("pointed-arch"), true)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_adaptive, std::string("cathedral-settlement"), true)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_adaptive, std::string("cathedral-settlement"), true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(capacity_run, cathedral_settlement_rotation_adaptive, std::string("cathedral-settlement-rotation"), true)
     ->Unit(benchmark::kMillisecond);
 

@@ -52,9 +52,7 @@ Case circular_arch(const CircularArch& p) {
   c.name = "circular arch";
   const double ri = p.radius - p.thickness / 2, re = p.radius + p.thickness / 2;
   const double phi0 = M_PI / 2 + p.embrace / 2, dphi = p.embrace / p.voussoirs;
-  auto support = [&](const std::string& id, double phi) {
-    return springing_support(id, polar(ri, phi), polar(re, phi), p.thickness, p.depth);
-  };
+  auto support = [&](const std::string& id, double phi) { return springing_support(id, polar(ri, phi), polar(re, phi), p.thickness, p.depth); };
   c.blocks.push_back(support("left", phi0));
   for (int k = 0; k < p.voussoirs; ++k) {
     // Angles from the joints' own formula, so that neighbours share their joint exactly.
@@ -113,8 +111,7 @@ Case pointed_arch(const PointedArch& p) {
     v.density = p.density;
     if (n % 2 == 1 && 2 * k + 1 == n && e > 0) {
       // Keystone across the axis: extrados apex as a vertex, intrados as a chord (convexity).
-      v.vertices = {corner(k, ri), corner(k + 1, ri), corner(k + 1, re), Vec2(0.0, std::sqrt(re * re - e * e)),
-                    corner(k, re)};
+      v.vertices = {corner(k, ri), corner(k + 1, ri), corner(k + 1, re), Vec2(0.0, std::sqrt(re * re - e * e)), corner(k, re)};
     } else {
       v.vertices = {corner(k, ri), corner(k + 1, ri), corner(k + 1, re), corner(k, re)};
     }

@@ -47,9 +47,7 @@ void make_ccw(std::vector<Vec2>& v) {
   if (signed_area(v) < 0) std::reverse(v.begin(), v.end());
 }
 
-std::vector<Vec2> rect(double xl, double xr, double y0, double y1) {
-  return {Vec2(xl, y0), Vec2(xr, y0), Vec2(xr, y1), Vec2(xl, y1)};
-}
+std::vector<Vec2> rect(double xl, double xr, double y0, double y1) { return {Vec2(xl, y0), Vec2(xr, y0), Vec2(xr, y1), Vec2(xl, y1)}; }
 
 // Course levels from y0 to y1 (both included, exactly), about `course` apart.
 std::vector<double> levels(double y0, double y1, double course) {
@@ -81,8 +79,8 @@ struct Half {
 
 // A flying buttress from its head (xh, yh: intrados, on a vertical face, arc top) down to its
 // foot intrados (xf, yf). Returns the foot's extrados corner Pe (the seat's upper corner).
-Vec2 flyer(Half& out, const std::string& prefix, double xh, double yh, double yh_top, double xf, double yf,
-           double t, int n, double depth, double density) {
+Vec2 flyer(Half& out, const std::string& prefix, double xh, double yh, double yh_top, double xf, double yf, double t, int n, double depth,
+           double density) {
   const double s = xf - xh, h = yh - yf;
   if (!(h > 0) || !(s > h)) throw CaseError("cathedral: a flyer must drop (head above foot) by less than its span");
   const double ri = (s * s + h * h) / (2 * h), re = ri + t;
@@ -94,9 +92,7 @@ Vec2 flyer(Half& out, const std::string& prefix, double xh, double yh, double yh
     const double th = M_PI / 2 - k * (M_PI / 2 - psi) / n;
     return c + polar(outer ? re : ri, th);
   };
-  for (int k = 0; k < n; ++k)
-    out.add(id2(prefix, k), {corner(k, false), corner(k + 1, false), corner(k + 1, true), corner(k, true)}, depth,
-            density);
+  for (int k = 0; k < n; ++k) out.add(id2(prefix, k), {corner(k, false), corner(k + 1, false), corner(k + 1, true), corner(k, true)}, depth, density);
   return corner(n, true);
 }
 
@@ -112,8 +108,8 @@ std::vector<std::vector<Vec2>> pointed_half(double xm, double xa, double xb, dou
   const Vec2 c(xm - e, y0);
   auto corner = [&](int k, bool outer) -> Vec2 {
     const double r = outer ? re : ri;
-    if (k == 0) return Vec2(outer ? xb : xa, y0);                              // springing
-    if (k == m) return Vec2(xm, y0 + std::sqrt(r * r - e * e));                 // crown, on the axis
+    if (k == 0) return Vec2(outer ? xb : xa, y0);                // springing
+    if (k == m) return Vec2(xm, y0 + std::sqrt(r * r - e * e));  // crown, on the axis
     return c + polar(r, k * (M_PI / 2 - gamma) / m);
   };
   std::vector<std::vector<Vec2>> v;
@@ -140,8 +136,7 @@ Case gothic_cathedral(const GothicCathedral& p) {
   need(p.nave_thickness > 0 && p.aisle_thickness > 0 && p.flyer_thickness > 0, "thicknesses must be positive");
   need(p.nave_thickness < p.pier_width, "the nave arch must be thinner than the pier it sits on");
   need(p.course > 0 && p.foundation_height > 0, "course and foundation height must be positive");
-  need(p.bay > 0 && p.pier_depth > 0 && p.buttress_depth > 0 && p.flyer_depth > 0 && p.density > 0,
-       "depths and density must be positive");
+  need(p.bay > 0 && p.pier_depth > 0 && p.buttress_depth > 0 && p.flyer_depth > 0 && p.density > 0, "depths and density must be positive");
   need(p.nave_voussoirs >= 2 && p.nave_voussoirs % 2 == 0, "nave_voussoirs must be even and >= 2");
   need(p.aisle_voussoirs >= 2 && p.aisle_voussoirs % 2 == 0, "aisle_voussoirs must be even and >= 2");
   need(p.flyer_voussoirs >= 1, "flyer_voussoirs must be >= 1");
@@ -154,8 +149,7 @@ Case gothic_cathedral(const GothicCathedral& p) {
   need(uh + tf <= yn + 1e-9, "the upper flyer's head must lie below the nave springing");
   need(yn < p.nave_height, "the nave springing must lie below the nave height");
 
-  const double x1 = p.nave_span / 2, x2 = x1 + p.pier_width, x3 = x2 + ta, x4 = x3 + p.aisle_span, x5 = x4 + ta,
-               x6 = x5 + p.buttress_width;
+  const double x1 = p.nave_span / 2, x2 = x1 + p.pier_width, x3 = x2 + ta, x4 = x3 + p.aisle_span, x5 = x4 + ta, x6 = x5 + p.buttress_width;
   const double rho = p.density;
   // Flyer head levels, shared by the pier courses and the flyers' head joints.
   const double lh_top = lh + tf;
@@ -193,15 +187,13 @@ Case gothic_cathedral(const GothicCathedral& p) {
   {
     int k = 0;
     const auto lo = levels(0, ya, p.course);
-    for (size_t i = 0; i + 1 < lo.size(); ++i)
-      right.add(id2("buttress-", k++), rect(x4, x6, lo[i], lo[i + 1]), p.buttress_depth, rho);
+    for (size_t i = 0; i + 1 < lo.size(); ++i) right.add(id2("buttress-", k++), rect(x4, x6, lo[i], lo[i + 1]), p.buttress_depth, rho);
     Half flyers;
     pe1 = flyer(flyers, "flyer-low-", x2, lh, lh_top, x5, p.lower_flyer_foot, tf, p.flyer_voussoirs, p.flyer_depth, rho);
     need(p.lower_flyer_foot > p.aisle_height + ta, "the lower flyer's foot must clear the aisle arch's extrados");
     need(pe1.x() < x6, "the lower flyer's seat must lie within the buttress");
     need(p.upper_flyer_foot > pe1.y(), "the upper flyer's foot must lie above the lower flyer's seat");
-    pe2 = flyer(flyers, "flyer-up-", x2, uh, uh_top, pe1.x(), p.upper_flyer_foot, tf, p.flyer_voussoirs, p.flyer_depth,
-                rho);
+    pe2 = flyer(flyers, "flyer-up-", x2, uh, uh_top, pe1.x(), p.upper_flyer_foot, tf, p.flyer_voussoirs, p.flyer_depth, rho);
     need(pe2.x() < x6, "the upper flyer's seat must lie within the buttress");
     need(p.buttress_height > pe2.y(), "the buttress must rise above the upper flyer's seat");
     // A stage [xin, x6] from y0 up; with a seat, courses up to the foot intrados pi, the last of
@@ -211,8 +203,7 @@ Case gothic_cathedral(const GothicCathedral& p) {
       const auto y = levels(y0, pi ? pi->y() : y1, p.course);
       for (size_t i = 0; i + 1 < y.size(); ++i) {
         if (pe && i + 2 == y.size()) {
-          right.add(id2("buttress-", k++), {Vec2(xin, y[i]), Vec2(x6, y[i]), Vec2(x6, pe->y()), *pe, *pi},
-                    p.buttress_depth, rho);
+          right.add(id2("buttress-", k++), {Vec2(xin, y[i]), Vec2(x6, y[i]), Vec2(x6, pe->y()), *pe, *pi}, p.buttress_depth, rho);
         } else {
           right.add(id2("buttress-", k++), rect(xin, x6, y[i], y[i + 1]), p.buttress_depth, rho);
         }

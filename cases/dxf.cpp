@@ -183,10 +183,13 @@ std::map<std::string, LayerProps> read_layers(const std::string& file) {
     if (!it->is_object()) throw CaseError(where + ": must be an object");
     LayerProps p;
     for (auto f = it->begin(); f != it->end(); ++f) {
-      if (f.key() == "support" && f->is_boolean()) p.support = f->get<bool>();
+      if (f.key() == "support" && f->is_boolean())
+        p.support = f->get<bool>();
       else if ((f.key() == "density" || f.key() == "depth") && f->is_number())
         (f.key() == "density" ? p.density : p.depth) = f->get<double>();
-      else throw CaseError(where + ": field '" + printable(f.key()) + "': unknown, or not of its type (density, depth: numbers; support: true or false)");
+      else
+        throw CaseError(where + ": field '" + printable(f.key()) +
+                        "': unknown, or not of its type (density, depth: numbers; support: true or false)");
     }
     out[it.key()] = p;
   }
@@ -218,14 +221,14 @@ std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, doubl
     for (const DxfVertex& v : p.v)
       if (!(std::max(std::abs(v.x), std::abs(v.y)) * scale <= kMaxCoordinate))
         throw CaseError(path + ":" + std::to_string(v.line) + ": " + p.e.name() +
-                        ": group codes 10/20: a vertex beyond 1e5 m from the origin (README, \"Ranges\"; a drawing unit is " +
-                        fmt::g(scale, 6) + " m)");
+                        ": group codes 10/20: a vertex beyond 1e5 m from the origin (README, \"Ranges\"; a drawing unit is " + fmt::g(scale, 6) +
+                        " m)");
     for (size_t i = 0; i < p.v.size(); ++i) {
       const DxfVertex &a = p.v[i], &b = p.v[(i + 1) % p.v.size()];
       if (!append_arc(k.v, scale * Vec2(a.x, a.y), scale * Vec2(b.x, b.y), a.bulge, o.arc_tolerance))
         throw CaseError(path + ":" + std::to_string(a.line) + ": " + p.e.name() + ": group code 42 = " + fmt::g(a.bulge, 6) +
-                        ": the arc needs more than " + std::to_string(static_cast<long>(kMaxChordsPerArc)) +
-                        " chords within --arc-tolerance " + fmt::g(o.arc_tolerance, 6) + " m (a drafting error, or give a larger tolerance)");
+                        ": the arc needs more than " + std::to_string(static_cast<long>(kMaxChordsPerArc)) + " chords within --arc-tolerance " +
+                        fmt::g(o.arc_tolerance, 6) + " m (a drafting error, or give a larger tolerance)");
     }
     // The closing vertex repeated on the first (some programs write it): drop it.
     if (k.v.size() > 3 && (k.v.front() - k.v.back()).norm() <= 1e-12 * (1 + k.v.front().norm())) k.v.pop_back();
@@ -239,8 +242,9 @@ std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, doubl
     k.depth = props.depth.value_or(o.depth);
     if (!k.support) {
       if (!props.density && !(o.density > 0))
-        throw CaseError(where + ": the layer follows no convention the import knows: not SUPPORT*, not IGNORE*, and no density "
-                                "(give --density or the layer's density in --layers)");
+        throw CaseError(where +
+                        ": the layer follows no convention the import knows: not SUPPORT*, not IGNORE*, and no density "
+                        "(give --density or the layer's density in --layers)");
       k.density = props.density.value_or(o.density);
     }
     k.id = printable(p.e.layer, 40) + "-" + std::to_string(++count[p.e.layer]);
@@ -337,8 +341,8 @@ std::vector<std::string> near_joints(const std::vector<Piece>& ps, double tol, d
       if (gap > tol && gap <= near) {
         char b[64];
         std::snprintf(b, sizeof b, "%.3g mm", gap * 1e3);
-        out.push_back("blocks '" + printable(ps[i].id) + "' and '" + printable(ps[j].id) + "' almost meet: " +
-                      (inside ? "they overlap by " : "a gap of ") + b + " (a drafting error? --snap closes it)");
+        out.push_back("blocks '" + printable(ps[i].id) + "' and '" + printable(ps[j].id) +
+                      "' almost meet: " + (inside ? "they overlap by " : "a gap of ") + b + " (a drafting error? --snap closes it)");
       }
     }
   return out;
@@ -352,8 +356,10 @@ std::string skipped_note(const DxfDrawing& d) {
   for (const DxfEntity& e : d.lines)
     if (!ignored_layer(e.layer)) ++n["LINE"];
   for (const DxfEntity& e : d.skipped) {
-    if (e.paper_space) ++paper;
-    else if (!ignored_layer(e.layer)) ++n[printable(e.type, 40)];
+    if (e.paper_space)
+      ++paper;
+    else if (!ignored_layer(e.layer))
+      ++n[printable(e.type, 40)];
   }
   std::string s;
   for (const auto& [type, k] : n) s += (s.empty() ? "" : ", ") + std::to_string(k) + " " + type;
@@ -410,17 +416,18 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
     json v = json::array();
     for (const Vec2& p : k.v) v.push_back({p.x(), p.y()});
     json b = {{"id", k.id}, {"vertices", v}, {"depth", k.depth}};
-    if (k.support) b["support"] = true;
-    else b["density"] = k.density;
+    if (k.support)
+      b["support"] = true;
+    else
+      b["density"] = k.density;
     blocks.push_back(b);
   }
   doc["blocks"] = blocks;
   const json fragment = merge_fragment(o.merge_file);
   for (auto it = fragment.begin(); it != fragment.end(); ++it) doc[it.key()] = it.value();
   const char* tol_field = option_of(&PrdOptions::contact_tolerance).name;
-  const double tol = doc.contains("prd") && doc["prd"].contains(tol_field) && doc["prd"][tol_field].is_number()
-                         ? doc["prd"][tol_field].get<double>()
-                         : PrdOptions{}.contact_tolerance;
+  const double tol = doc.contains("prd") && doc["prd"].contains(tol_field) && doc["prd"][tol_field].is_number() ? doc["prd"][tol_field].get<double>()
+                                                                                                                : PrdOptions{}.contact_tolerance;
   const std::vector<std::string> near = near_joints(pieces, tol, std::max(o.near_joint, o.snap));
   out.notes.insert(out.notes.end(), near.begin(), near.end());
   try {

@@ -18,8 +18,8 @@
 namespace masonry {
 
 std::string DxfEntity::name() const {
-  return printable(type, 40) + " (handle " + (handle.empty() ? std::string("none") : printable(handle, 40)) + ", layer '" +
-         printable(layer, 80) + "')";
+  return printable(type, 40) + " (handle " + (handle.empty() ? std::string("none") : printable(handle, 40)) + ", layer '" + printable(layer, 80) +
+         "')";
 }
 
 namespace {
@@ -141,8 +141,8 @@ std::string text_utf8(std::string_view raw) {
   std::string o;
   for (size_t i = 0; i < s.size(); ++i) {
     unsigned cp = 0;
-    if (s.compare(i, 3, "\\U+") == 0 && i + 7 <= s.size() &&
-        std::from_chars(s.data() + i + 3, s.data() + i + 7, cp, 16).ptr == s.data() + i + 7 && cp >= 0x20 && (cp < 0xd800 || cp > 0xdfff)) {
+    if (s.compare(i, 3, "\\U+") == 0 && i + 7 <= s.size() && std::from_chars(s.data() + i + 3, s.data() + i + 7, cp, 16).ptr == s.data() + i + 7 &&
+        cp >= 0x20 && (cp < 0xd800 || cp > 0xdfff)) {
       put_utf8(o, cp);
       i += 6;
     } else {
@@ -163,9 +163,7 @@ class Pairs {
  public:
   Pairs(const std::string& path, const std::string& text) : path_(path), text_(text) {}
 
-  [[noreturn]] void fail(size_t line, const std::string& what) const {
-    throw CaseError(path_ + ":" + std::to_string(line) + ": " + what);
-  }
+  [[noreturn]] void fail(size_t line, const std::string& what) const { throw CaseError(path_ + ":" + std::to_string(line) + ": " + what); }
 
   bool next(Pair& p) {
     if (held_) {
@@ -240,8 +238,10 @@ struct Entity {
     bool seen5 = false, seen8 = false;
     for (const Pair& p : pairs) {
       const GroupType t = group_type(p.code);
-      if (t == GroupType::real) (void)real(in, p);
-      else if (t != GroupType::text) (void)integer(in, p);
+      if (t == GroupType::real)
+        (void)real(in, p);
+      else if (t != GroupType::text)
+        (void)integer(in, p);
       if (p.code == 5 || p.code == 8) {
         bool& seen = p.code == 5 ? seen5 : seen8;
         if (seen) fail(in, p, "given twice");
@@ -435,8 +435,10 @@ void read_entities(Pairs& in, DxfDrawing& d) {
       if (type != "SEQEND")
         poly_entity->fail(in, poly_entity->e.line,
                           "its vertices end without a SEQEND (a " + printable(type, 40) + " at line " + std::to_string(head.line) + ")");
-      if (poly_entity->e.paper_space) d.skipped.push_back(poly_entity->e);
-      else d.polylines.push_back(std::move(*poly));
+      if (poly_entity->e.paper_space)
+        d.skipped.push_back(poly_entity->e);
+      else
+        d.polylines.push_back(std::move(*poly));
       poly_entity.reset();
       poly.reset();
       continue;
@@ -456,9 +458,12 @@ void read_entities(Pairs& in, DxfDrawing& d) {
       d.skipped.push_back(x.e);
       continue;
     }
-    if (type == "LWPOLYLINE") d.polylines.push_back(lwpolyline(in, x));
-    else if (type == "TEXT" || type == "MTEXT") d.texts.push_back(text(in, x));
-    else if (type == "LINE") d.lines.push_back(x.e);
+    if (type == "LWPOLYLINE")
+      d.polylines.push_back(lwpolyline(in, x));
+    else if (type == "TEXT" || type == "MTEXT")
+      d.texts.push_back(text(in, x));
+    else if (type == "LINE")
+      d.lines.push_back(x.e);
     else if (type == "CIRCLE" || type == "ARC" || type == "ELLIPSE" || type == "SPLINE" || type == "INSERT") {
       d.curves.push_back(x.e);
       if (type == "INSERT")
@@ -497,9 +502,12 @@ DxfDrawing read_dxf(const std::string& path) {
     const Pair n = must_next(in, "a section's head");
     if (n.code != 2) in.fail(n.line, "a section without its name (group code 2)");
     const std::string name(trim(n.value));
-    if (name == "HEADER") read_header(in, d);
-    else if (name == "ENTITIES") read_entities(in, d);
-    else skip_section(in, name);
+    if (name == "HEADER")
+      read_header(in, d);
+    else if (name == "ENTITIES")
+      read_entities(in, d);
+    else
+      skip_section(in, name);
   }
   in.fail(in.line_no(), "the drawing ends without 0 EOF (truncated?)");
 }

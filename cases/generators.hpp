@@ -16,14 +16,14 @@ namespace masonry {
 // horizontal, `thickness` below the lower springing point. The voussoirs are "v0" (left) to
 // "v<n-1>" (right). With `spreading` the right support moves outward (+x) by `step` per step.
 struct CircularArch {
-  double radius = 1.0;        // centreline radius R, m
-  double thickness = 0.12;    // t, m
+  double radius = 1.0;                      // centreline radius R, m
+  double thickness = 0.12;                  // t, m
   double embrace = 3.14159265358979323846;  // angle of embrace, rad (pi: semicircle)
   int voussoirs = 20;
-  double depth = 1.0;         // m
-  double density = 1800.0;    // kg/m^3
-  bool spreading = true;      // the right support moves outward
-  double step = 0.001;        // m
+  double depth = 1.0;       // m
+  double density = 1800.0;  // kg/m^3
+  bool spreading = true;    // the right support moves outward
+  double step = 0.001;      // m
   int max_steps = 2000;
 };
 Case circular_arch(const CircularArch& p);
@@ -54,15 +54,15 @@ Case circular_arch(const CircularArch& p);
 // circular_arch() with the same radius, thickness, embrace and voussoirs, bit for bit.
 // Supports, ids and motion as in circular_arch ("left", "v0".."v<n-1>", "right").
 struct PointedArch {
-  double rcirc = 1.0;         // Rcirc, m
-  double eccentricity = 0.0;  // e, m (standard case: see standard_case("pointed-arch"))
-  double thickness = 0.12;    // t, m
+  double rcirc = 1.0;                                       // Rcirc, m
+  double eccentricity = 0.0;                                // e, m (standard case: see standard_case("pointed-arch"))
+  double thickness = 0.12;                                  // t, m
   double embrace = 150.0 * 3.14159265358979323846 / 180.0;  // alpha, rad
   int voussoirs = 14;
-  double depth = 1.0;         // m
-  double density = 1800.0;    // kg/m^3
-  bool spreading = true;      // the right support moves outward (+x)
-  double step = 0.001;        // m
+  double depth = 1.0;       // m
+  double density = 1800.0;  // kg/m^3
+  bool spreading = true;    // the right support moves outward (+x)
+  double step = 0.001;      // m
   int max_steps = 400;
 };
 Case pointed_arch(const PointedArch& p);
@@ -83,41 +83,41 @@ struct GothicCathedral {
   double bay = 7.3;            // distance between cross-sections: depth of arches (vaults), m
   // Chosen dimensions: not in the paper's text (its Fig. 13 is not available); High Gothic and
   // Amiens proportions, reasoning in cases/README.md. None was tuned towards a capacity.
-  double nave_span = 12.8;        // clear, between pier faces: Amiens ~14.6 m between pier axes
-  double pier_width = 1.8;        // pier shaft; Amiens' cantoned piers are ~2 m across
-  double aisle_span = 7.0;        // clear; the aisle about half the nave, as at Amiens
-  double buttress_width = 4.0;    // culee above the aisle springing (deep, ~1/3 nave span)
-  double nave_springing = 31.0;   // pier top: 11 m rise over 12.8 m, near-equilateral (e/Rcirc 0.92)
-  double aisle_springing = 13.0;  // 6 m rise over 7 m, the same profile (e/Rcirc 0.89)
-  double nave_thickness = 0.8;    // nave arch, radial: a transverse rib with the web lumped in, ~span/16
-  double aisle_thickness = 0.6;   // aisle arch, radial, ~span/12 (also the ledges it springs from)
-  double flyer_thickness = 0.8;   // flying buttresses, radial (Amiens' are ~0.8-1 m deep)
-  double lower_flyer_head = 24.0; // intrados of the lower flyer's head on the pier, m
-  double lower_flyer_foot = 20.0; // intrados of its foot on the buttress (clears the aisle extrados, 19.6 m)
-  double upper_flyer_head = 30.2; // head top at the nave springing, where the nave arch thrusts
+  double nave_span = 12.8;         // clear, between pier faces: Amiens ~14.6 m between pier axes
+  double pier_width = 1.8;         // pier shaft; Amiens' cantoned piers are ~2 m across
+  double aisle_span = 7.0;         // clear; the aisle about half the nave, as at Amiens
+  double buttress_width = 4.0;     // culee above the aisle springing (deep, ~1/3 nave span)
+  double nave_springing = 31.0;    // pier top: 11 m rise over 12.8 m, near-equilateral (e/Rcirc 0.92)
+  double aisle_springing = 13.0;   // 6 m rise over 7 m, the same profile (e/Rcirc 0.89)
+  double nave_thickness = 0.8;     // nave arch, radial: a transverse rib with the web lumped in, ~span/16
+  double aisle_thickness = 0.6;    // aisle arch, radial, ~span/12 (also the ledges it springs from)
+  double flyer_thickness = 0.8;    // flying buttresses, radial (Amiens' are ~0.8-1 m deep)
+  double lower_flyer_head = 24.0;  // intrados of the lower flyer's head on the pier, m
+  double lower_flyer_foot = 20.0;  // intrados of its foot on the buttress (clears the aisle extrados, 19.6 m)
+  double upper_flyer_head = 30.2;  // head top at the nave springing, where the nave arch thrusts
   // Place the upper flyer's head top at the nave springing whatever the springing and the flyer
   // thickness (upper_flyer_head = nave_springing - flyer_thickness: 30.2 m with the defaults),
   // for studies that vary either (sweep/README.md).
   bool upper_flyer_at_springing = false;
-  double upper_flyer_foot = 26.0; // on the buttress' second stage
-  double buttress_height = 33.0;  // a stage above the upper seat (26.5 m)
-  double foundation_height = 1.0; // support blocks, m
+  double upper_flyer_foot = 26.0;  // on the buttress' second stage
+  double buttress_height = 33.0;   // a stage above the upper seat (26.5 m)
+  double foundation_height = 1.0;  // support blocks, m
   // Out-of-plane depths (paper, Fig. 13b: arches and vaults get the bay).
   double pier_depth = 2.0;
   double buttress_depth = 2.0;
   double flyer_depth = 1.0;
   double density = 1800.0;  // kg/m^3
   // Discretisation.
-  double course = 1.0;      // target height of the courses of piers and buttresses, m
-  int nave_voussoirs = 42;  // even: the crown joint lies on the axis (42: 276 blocks in all)
-  int aisle_voussoirs = 20; // even
+  double course = 1.0;       // target height of the courses of piers and buttresses, m
+  int nave_voussoirs = 42;   // even: the crown joint lies on the axis (42: 276 blocks in all)
+  int aisle_voussoirs = 20;  // even
   int flyer_voussoirs = 17;
   // Prescribed motion of one support per step: settlement (down) and a counter-clockwise turn
   // about the support's centroid. Both zero: no motion (the structure as it stands).
-  int moving_support = 3;          // 1..4 from the left
-  double settlement_step = 0.0;    // m per step
-  double rotation_step = 0.0;      // rad per step
-  double step = 0.01;              // m of the path parameter d per step
+  int moving_support = 3;        // 1..4 from the left
+  double settlement_step = 0.0;  // m per step
+  double rotation_step = 0.0;    // rad per step
+  double step = 0.01;            // m of the path parameter d per step
   int max_steps = 300;
 };
 Case gothic_cathedral(const GothicCathedral& p);
@@ -151,18 +151,18 @@ enum class MovingGround { none, left, right };
 struct BrickWall {
   WallBond bond = WallBond::running;
   int courses = 10;
-  int bricks = 10;              // units per course: stretchers (running, stack) or headers
-  double brick_length = 0.25;   // m
-  double header_length = 0.125; // m: a header's face (the brick's width), header bond
-  double course_height = 0.125; // m
-  double depth = 0.25;          // out-of-plane thickness of the wall, m
-  double density = 1800.0;      // kg/m^3
+  int bricks = 10;               // units per course: stretchers (running, stack) or headers
+  double brick_length = 0.25;    // m
+  double header_length = 0.125;  // m: a header's face (the brick's width), header bond
+  double course_height = 0.125;  // m
+  double depth = 0.25;           // out-of-plane thickness of the wall, m
+  double density = 1800.0;       // kg/m^3
   std::vector<WallOpening> openings;
   double lintel_bearing = 0.125;  // m, on each side of an opening
   double arch_thickness = 0.125;  // m
   int arch_voussoirs = 0;
-  double ground_height = 0.25;    // m
-  double ground_split = -1;       // m from the left end; < 0: the middle
+  double ground_height = 0.25;  // m
+  double ground_split = -1;     // m from the left end; < 0: the middle
   MovingGround moving = MovingGround::right;
   double settlement_step = 0.001;  // m down per step
   double rotation_step = 0.0;      // rad counter-clockwise per step, about the split's top point

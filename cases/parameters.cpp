@@ -137,11 +137,10 @@ std::vector<CaseGenerator> make_generators() {
   out.push_back(generator<CircularArch>("circular-arch", "Circular arch, radial joints, on two supports; right support spreading", arch,
                                         circular_arch_bindings(arch), circular_arch, ""));
   const PointedArch pointed = standard_pointed_arch();
-  out.push_back(generator<PointedArch>(
-      "pointed-arch",
-      "Two-centred pointed arch (Romano & Ochsendorf parameters) on two supports; right support spreading. "
-      "With the default parameters: the standard scene cases/pointed-arch.json",
-      pointed, pointed_arch_bindings(pointed), pointed_arch, "pointed-arch"));
+  out.push_back(generator<PointedArch>("pointed-arch",
+                                       "Two-centred pointed arch (Romano & Ochsendorf parameters) on two supports; right support spreading. "
+                                       "With the default parameters: the standard scene cases/pointed-arch.json",
+                                       pointed, pointed_arch_bindings(pointed), pointed_arch, "pointed-arch"));
   const auto cathedral = [&](const std::string& name, const std::string& summary, const GothicCathedral& d, const std::string& standard) {
     out.push_back(generator<GothicCathedral>(name, summary, d, cathedral_bindings(d), gothic_cathedral, standard));
   };

@@ -38,8 +38,8 @@ std::string case_svg(const Case& c) {
   o << "<title>" << svg_text(c.name) << " (m; supports hatched, joints red, loads and support motion blue)</title>\n";
   o << "<defs>\n"
     << "<pattern id=\"hatch\" patternUnits=\"userSpaceOnUse\" width=\"" << num(4 * font / 5) << "\" height=\"" << num(4 * font / 5)
-    << "\" patternTransform=\"rotate(45)\"><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"" << num(4 * font / 5)
-    << "\" stroke=\"#555\" stroke-width=\"" << num(stroke) << "\"/></pattern>\n"
+    << "\" patternTransform=\"rotate(45)\"><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"" << num(4 * font / 5) << "\" stroke=\"#555\" stroke-width=\""
+    << num(stroke) << "\"/></pattern>\n"
     << "<marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\">"
     << "<path d=\"M0,0 L10,5 L0,10 z\" fill=\"#1f5fbf\"/></marker>\n"
     << "</defs>\n";
@@ -51,8 +51,8 @@ std::string case_svg(const Case& c) {
   }
   o << "</g>\n<g id=\"joints\">\n";
   for (const Interface& J : detect_interfaces(c, c.prd.contact_tolerance))
-    o << "<line class=\"joint\" x1=\"" << num(J.a.x()) << "\" y1=\"" << num(-J.a.y()) << "\" x2=\"" << num(J.b.x()) << "\" y2=\""
-      << num(-J.b.y()) << "\" stroke=\"#c0392b\" stroke-width=\"" << num(2 * stroke) << "\"/>\n";
+    o << "<line class=\"joint\" x1=\"" << num(J.a.x()) << "\" y1=\"" << num(-J.a.y()) << "\" x2=\"" << num(J.b.x()) << "\" y2=\"" << num(-J.b.y())
+      << "\" stroke=\"#c0392b\" stroke-width=\"" << num(2 * stroke) << "\"/>\n";
   o << "</g>\n<g id=\"ids\" font-family=\"sans-serif\" font-size=\"" << num(font) << "\" text-anchor=\"middle\">\n";
   for (const Block& b : c.blocks) {
     const Vec2 m = centroid(b.vertices);
@@ -66,8 +66,7 @@ std::string case_svg(const Case& c) {
     if (!(fmax > 0) || l.force.norm() == 0) continue;
     const Vec2 tail = l.point - 0.1 * L * l.force / fmax;
     o << "<line class=\"load\" x1=\"" << num(tail.x()) << "\" y1=\"" << num(-tail.y()) << "\" x2=\"" << num(l.point.x()) << "\" y2=\""
-      << num(-l.point.y()) << "\" marker-end=\"url(#arrow)\"><title>" << num(l.force.x()) << ", " << num(l.force.y())
-      << " N</title></line>\n";
+      << num(-l.point.y()) << "\" marker-end=\"url(#arrow)\"><title>" << num(l.force.x()) << ", " << num(l.force.y()) << " N</title></line>\n";
   }
   o << "</g>\n<g id=\"motion\" stroke=\"#1f5fbf\" fill=\"none\" stroke-width=\"" << num(2 * stroke) << "\">\n";
   // Support motion per unit of d: an arrow for the translation (a tenth of the scene per unit of
@@ -76,8 +75,8 @@ std::string case_svg(const Case& c) {
     const Vec2 from = centroid(c.blocks[m.block].vertices);
     if (m.translation.norm() > 0) {
       const Vec2 to = from + 0.1 * L * m.translation.normalized();
-      o << "<line class=\"motion\" x1=\"" << num(from.x()) << "\" y1=\"" << num(-from.y()) << "\" x2=\"" << num(to.x()) << "\" y2=\""
-        << num(-to.y()) << "\" marker-end=\"url(#arrow)\"/>\n";
+      o << "<line class=\"motion\" x1=\"" << num(from.x()) << "\" y1=\"" << num(-from.y()) << "\" x2=\"" << num(to.x()) << "\" y2=\"" << num(-to.y())
+        << "\" marker-end=\"url(#arrow)\"/>\n";
     }
     if (m.rotation != 0) {
       const double r = 0.05 * L, s = m.rotation > 0 ? 1.0 : -1.0;

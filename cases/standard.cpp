@@ -17,8 +17,7 @@ constexpr double kPointedArchEOverRcirc = 0.20;
 std::vector<StandardCase> standard_cases() {
   return {{"pointed-arch", "the paper's pointed arch (Section 3), right support spreading in 1 mm steps"},
           {"cathedral-settlement", "the Gothic cathedral section (Section 4), third pier settling in 1 cm steps"},
-          {"cathedral-settlement-rotation",
-           "the same, the third pier settling 1 cm and turning 0.001 rad counter-clockwise per step"}};
+          {"cathedral-settlement-rotation", "the same, the third pier settling 1 cm and turning 0.001 rad counter-clockwise per step"}};
 }
 
 PointedArch standard_pointed_arch() {

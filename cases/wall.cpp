@@ -38,9 +38,12 @@ WallOpening parse_wall_opening(const std::string& text) {
     if (used == 0 || used != parts[k].size() || !std::isfinite(*fields[k])) throw bad("'" + printable(parts[k]) + "' is not a number");
   }
   if (parts.size() == 5) {
-    if (parts[4] == "lintel") o.top = OpeningTop::lintel;
-    else if (parts[4] == "arch") o.top = OpeningTop::arch;
-    else throw bad("the top must be 'lintel' or 'arch'");
+    if (parts[4] == "lintel")
+      o.top = OpeningTop::lintel;
+    else if (parts[4] == "arch")
+      o.top = OpeningTop::arch;
+    else
+      throw bad("the top must be 'lintel' or 'arch'");
   }
   return o;
 }
@@ -187,8 +190,8 @@ Case brick_wall(const BrickWall& p) {
       throw fail(name + ": its " + (w.top == OpeningTop::lintel ? "lintel" : "arch") + " needs " + std::to_string(L.c_end) +
                  " courses, the wall has " + std::to_string(p.courses));
     if (L.lo < sliver || L.hi > length - sliver)
-      throw fail(name + ": it and its " + (w.top == OpeningTop::lintel ? "lintel's bearings" : "arch") + " span " + number(L.lo) +
-                 ".." + number(L.hi) + " m, closer than a quarter unit to the wall's ends (0.." + number(length) + " m)");
+      throw fail(name + ": it and its " + (w.top == OpeningTop::lintel ? "lintel's bearings" : "arch") + " span " + number(L.lo) + ".." +
+                 number(L.hi) + " m, closer than a quarter unit to the wall's ends (0.." + number(length) + " m)");
     for (int r = L.c_sill; r < L.c_top; ++r) bands[r].push_back({w.x, w.x + w.width, static_cast<int>(o)});
     for (int r = L.c_top; r < L.c_end; ++r) bands[r].push_back({L.lo, L.hi, static_cast<int>(o)});
     laid.push_back(L);
@@ -206,9 +209,11 @@ Case brick_wall(const BrickWall& p) {
   c.source = "wall";
   c.name = "brick wall";
   std::ostringstream what;
-  what << wall_bond_name(p.bond) << " bond, " << p.courses << " courses of " << p.bricks << " units (" << number(unit) << " x "
-       << number(H) << " m), " << p.openings.size() << " openings; ground "
-       << (p.moving == MovingGround::none ? "fixed" : p.moving == MovingGround::left ? "left of " : "right of ")
+  what << wall_bond_name(p.bond) << " bond, " << p.courses << " courses of " << p.bricks << " units (" << number(unit) << " x " << number(H)
+       << " m), " << p.openings.size() << " openings; ground "
+       << (p.moving == MovingGround::none   ? "fixed"
+           : p.moving == MovingGround::left ? "left of "
+                                            : "right of ")
        << (p.moving == MovingGround::none ? "" : number(split) + " m moving");
   c.description = what.str();
   // Supports first, as in the other generators.
@@ -241,8 +246,10 @@ Case brick_wall(const BrickWall& p) {
       merged = false;
       for (size_t k = 0; k + 1 < cuts.size() && !merged; ++k) {
         if (cuts[k + 1].x - cuts[k].x >= sliver || inside_band(0.5 * (cuts[k].x + cuts[k + 1].x))) continue;
-        if (!cuts[k + 1].fixed) cuts.erase(cuts.begin() + k + 1), merged = true;
-        else if (!cuts[k].fixed) cuts.erase(cuts.begin() + k), merged = true;
+        if (!cuts[k + 1].fixed)
+          cuts.erase(cuts.begin() + k + 1), merged = true;
+        else if (!cuts[k].fixed)
+          cuts.erase(cuts.begin() + k), merged = true;
       }
     }
     int piece = 0;

@@ -1,5 +1,4 @@
 #include "compare/compare.hpp"
-#include "model/interfaces.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/interfaces.hpp"
+
 namespace masonry {
 
 using ojson = nlohmann::ordered_json;
@@ -19,7 +20,6 @@ using ojson = nlohmann::ordered_json;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 
 std::string fmt(double x, int prec = 4) {
   if (!std::isfinite(x)) return "n/a";
@@ -47,8 +47,8 @@ double interp(const std::vector<double>& x, const std::vector<double>& y, double
 // blocks and corner, -1 beyond kMaxHingeShift. Matching is by (unordered block pair, corner
 // point), so the runs' joint numbering need not agree. With `mirror`, h's places are mapped
 // through the mirror image about x = xc first.
-int ring_distance(const Case& c, const RunResult& r, const Hinge& h, const std::vector<Hinge>& others, const std::vector<int>* mirror,
-                  double xc, double tol) {
+int ring_distance(const Case& c, const RunResult& r, const Hinge& h, const std::vector<Hinge>& others, const std::vector<int>* mirror, double xc,
+                  double tol) {
   for (const RingSpot& s : ring_neighbours(c, r, h.joint, h.corner, kMaxHingeShift)) {  // nearest first
     const JointInfo& ji = r.joints[size_t(s.joint)];
     int i = ji.i, j = ji.j;
@@ -149,9 +149,7 @@ const StepRecord* record_at(const std::vector<const StepRecord*>& recs, double d
   return best;
 }
 
-double record_step(const std::vector<const StepRecord*>& recs) {
-  return recs.size() >= 2 ? recs[1]->d - recs[0]->d : 0.0;
-}
+double record_step(const std::vector<const StepRecord*>& recs) { return recs.size() >= 2 ? recs[1]->d - recs[0]->d : 0.0; }
 
 namespace {
 
@@ -372,8 +370,8 @@ std::vector<int> mirror_blocks(const Case& c) {
   return m;
 }
 
-Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, const CompareOptions& o,
-                        const std::string& label_a, const std::string& label_b) {
+Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, const CompareOptions& o, const std::string& label_a,
+                        const std::string& label_b) {
   Comparison k;
   k.case_name = c.name;
   k.total_weight = a.total_weight > 0 ? a.total_weight : b.total_weight;
@@ -430,8 +428,8 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
     for (const Reaction& x : ra.front()->reactions) supports.push_back(x.support);
   double sum2 = 0.0, where_diff = -1.0;
   size_t n2 = 0;
-  const auto series = [&](const std::vector<const StepRecord*>& recs, const std::string& id, int comp,
-                          std::vector<double>& xs, std::vector<double>& ys) {
+  const auto series = [&](const std::vector<const StepRecord*>& recs, const std::string& id, int comp, std::vector<double>& xs,
+                          std::vector<double>& ys) {
     for (const StepRecord* s : recs)
       for (const Reaction& x : s->reactions)
         if (x.support == id) {
@@ -522,7 +520,9 @@ ojson to_json(const Comparison& k) {
   j["a"] = summary_json(k.a);
   j["b"] = summary_json(k.b);
   j["total_weight"] = json_number(k.total_weight);
-  j["capacity"] = {{"a", json_number(k.a.capacity)}, {"b", json_number(k.b.capacity)}, {"relative_difference", json_number(k.capacity_rel_diff)},
+  j["capacity"] = {{"a", json_number(k.a.capacity)},
+                   {"b", json_number(k.b.capacity)},
+                   {"relative_difference", json_number(k.capacity_rel_diff)},
                    {"difference", json_number(k.b.capacity - k.a.capacity)}};
   ojson t;
   t["compared"] = k.thrust_skipped.empty();
@@ -578,15 +578,18 @@ ojson to_json(const Comparison& k) {
   }
   j["hinges"] = {{"compared", k.hinges_skipped.empty()}};
   if (!k.hinges_skipped.empty()) j["hinges"]["note"] = k.hinges_skipped;
-  j["hinges"].update(ojson{{"symmetric", k.symmetric}, {"min_opening", json_number(k.hinge_gap)}, {"max_joints_apart", kMaxHingeShift}, {"checks", hc}});
+  j["hinges"].update(
+      ojson{{"symmetric", k.symmetric}, {"min_opening", json_number(k.hinge_gap)}, {"max_joints_apart", kMaxHingeShift}, {"checks", hc}});
   ojson ma = ojson::array();
   const auto motion_json = [](const JointMotion& m) {
-    return ojson{{"rotation", json_number(m.rotation)}, {"open_a", json_number(m.open_a)}, {"open_b", json_number(m.open_b)}, {"slip", json_number(m.slip)}};
+    return ojson{
+        {"rotation", json_number(m.rotation)}, {"open_a", json_number(m.open_a)}, {"open_b", json_number(m.open_b)}, {"slip", json_number(m.slip)}};
   };
   for (const MotionCheck& m : k.motion) {
     ojson differ = ojson::array();
     for (const MotionDiff& x : m.differ)
-      differ.push_back({{"joint", x.label}, {"share", json_number(x.share)}, {"weight", json_number(x.weight)}, {"a", motion_json(x.a)}, {"b", motion_json(x.b)}});
+      differ.push_back(
+          {{"joint", x.label}, {"share", json_number(x.share)}, {"weight", json_number(x.weight)}, {"a", motion_json(x.a)}, {"b", motion_json(x.b)}});
     ma.push_back({{"from", json_number(m.from)},
                   {"to", m.collapse ? ojson(nullptr) : json_number(m.to)},
                   {"collapse", m.collapse},
@@ -617,22 +620,22 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
     if (t.capacity) limits = fmt(*t.capacity * 100, 3) + "%";
     if (t.capacity_abs) limits += (limits.empty() ? "" : " or ") + fmt(*t.capacity_abs) + " m";
     if (!std::isfinite(diff) || diff > limit)
-      out.push_back("capacity: " + k.a.label + " " + fmt(k.a.capacity) + " m, " + k.b.label + " " + fmt(k.b.capacity) +
-                    " m: difference " + fmt(diff) + " m, relative " + fmt(std::abs(k.capacity_rel_diff) * 100, 3) + "% > limit " + limits);
+      out.push_back("capacity: " + k.a.label + " " + fmt(k.a.capacity) + " m, " + k.b.label + " " + fmt(k.b.capacity) + " m: difference " +
+                    fmt(diff) + " m, relative " + fmt(std::abs(k.capacity_rel_diff) * 100, 3) + "% > limit " + limits);
   }
   if (t.thrust && k.thrust_skipped.empty()) {
     const double m = k.thrust_max_diff;
     if (!std::isfinite(m) || m > *t.thrust)
-      out.push_back("thrust: largest support reaction difference " + fmt(m, 3) + " W (" + k.thrust_max_where + " at d = " +
-                    fmt(k.thrust_max_d) + " m) > limit " + fmt(*t.thrust, 3) + " W");
+      out.push_back("thrust: largest support reaction difference " + fmt(m, 3) + " W (" + k.thrust_max_where + " at d = " + fmt(k.thrust_max_d) +
+                    " m) > limit " + fmt(*t.thrust, 3) + " W");
   }
   const auto motion_violation = [&](const MotionCheck& m, const std::string& key, double limit) {
     std::string most;
     for (const MotionDiff& x : m.differ)
       most += (most.empty() ? "" : "; ") + x.label + " (" + k.a.label + " " + joint_motion_text(x.a) + ", " + k.b.label + " " +
               joint_motion_text(x.b) + (m.mirror ? ", mirrored" : "") + ")";
-    out.push_back(key + ": " + interval_text(m, k.d_unit, k.a.label, k.b.label) + " the joints move differently: agreement " +
-                  fmt(m.agreement, 3) + " < least " + fmt(limit, 3) + (most.empty() ? "" : "; most at " + most));
+    out.push_back(key + ": " + interval_text(m, k.d_unit, k.a.label, k.b.label) + " the joints move differently: agreement " + fmt(m.agreement, 3) +
+                  " < least " + fmt(limit, 3) + (most.empty() ? "" : "; most at " + most));
   };
   if (t.mechanism && k.mechanism_skipped.empty()) {
     const bool any = std::any_of(k.motion.begin(), k.motion.end(), [](const MotionCheck& m) { return !m.collapse; });
@@ -662,8 +665,8 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
           if (x.apart < 0 || x.apart > t.hinge_shift) l += (l.empty() ? "" : ", ") + x.label + " (" + fmt(x.opening * 1e3, 2) + " mm)";
         return l;
       };
-      out.push_back("hinges: at d = " + fmt(h.d) + " m only " + k.a.label + " has {" + alone(h.a) + "}, only " + k.b.label + " has {" +
-                    alone(h.b) + "}" + why);
+      out.push_back("hinges: at d = " + fmt(h.d) + " m only " + k.a.label + " has {" + alone(h.a) + "}, only " + k.b.label + " has {" + alone(h.b) +
+                    "}" + why);
     }
   }
   return out;
@@ -715,6 +718,5 @@ std::string read_or_throw(const std::string& path) {
 }  // namespace
 
 Tolerances load_tolerances(const std::string& path) { return parse_tolerances(read_or_throw(path), path); }
-
 
 }  // namespace masonry

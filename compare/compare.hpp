@@ -61,11 +61,11 @@ struct Hinge {
 };
 
 struct HingeCheck {
-  double d = 0.0;              // requested d, m
-  double d_a = 0.0, d_b = 0.0; // the records used (the last record at or before d)
+  double d = 0.0;               // requested d, m
+  double d_a = 0.0, d_b = 0.0;  // the records used (the last record at or before d)
   std::vector<Hinge> a, b;
-  bool match = false;          // same hinges
-  bool mirror = false;         // b's hinges are the mirror image of a's (symmetric scenes only)
+  bool match = false;   // same hinges
+  bool mirror = false;  // b's hinges are the mirror image of a's (symmetric scenes only)
   // Fewest joints along a ring that some hinge must move for the two sets to agree, directly or
   // as mirror images: 0 when they match or mirror-match, -1 when more than kMaxHingeShift.
   int shift = -1;
@@ -96,17 +96,17 @@ struct MotionDiff {
 // 1 for the same mechanism at any amplitude, 0 for motions at other joints or in other
 // directions (compare/README.md, "Mechanism agreement").
 struct MotionCheck {
-  double from = 0.0, to = 0.0;  // m: the interval of the common range; `to` NaN for the collapse
-  bool collapse = false;        // each run from its last equilibrium to its collapse state
+  double from = 0.0, to = 0.0;                                // m: the interval of the common range; `to` NaN for the collapse
+  bool collapse = false;                                      // each run from its last equilibrium to its collapse state
   double a_from = 0.0, a_to = 0.0, b_from = 0.0, b_to = 0.0;  // m: d of the records used
-  bool a_moves = false, b_moves = false;  // some joint corner moves beyond round-off (1e-9 of the scene)
+  bool a_moves = false, b_moves = false;                      // some joint corner moves beyond round-off (1e-9 of the scene)
   // 0 to 1; NaN unless both runs' joints move. With CompareOptions::ring_shift n > 0, the better
   // of the two runs' motions with either's moved along rings by up to n joints to meet the other's
   // (a hinge one voussoir or course along is the same mechanism, "Hinges one joint apart").
   double agreement = std::numeric_limits<double>::quiet_NaN();
   double same_joints = std::numeric_limits<double>::quiet_NaN();  // the agreement with every motion where it is
-  bool mirror = false;          // the agreement of b's mirror image (a symmetric scene), higher than the direct one
-  std::vector<MotionDiff> differ;  // the joints that differ most, largest share first (up to 3)
+  bool mirror = false;                                            // the agreement of b's mirror image (a symmetric scene), higher than the direct one
+  std::vector<MotionDiff> differ;                                 // the joints that differ most, largest share first (up to 3)
 };
 // A run's collapse state: the DEM's failed hold past its capacity, PRD's configuration one step
 // past it (where its last mechanism took the blocks); nothing for a run that did not collapse.
@@ -127,13 +127,13 @@ struct SupportCurve {
 };
 
 struct RunSummary {
-  std::string label;       // "PRD", "DEM phi=35", ...
-  std::string method;      // "prd" or "dem"
-  double capacity = 0.0;   // m
+  std::string label;      // "PRD", "DEM phi=35", ...
+  std::string method;     // "prd" or "dem"
+  double capacity = 0.0;  // m
   bool collapsed = false;
   RunStatus status = RunStatus::running;
-  double step = 0.0;       // m, the run's increment (from the records)
-  double time_s = 0.0;     // run time without I/O
+  double step = 0.0;            // m, the run's increment (from the records)
+  double time_s = 0.0;          // run time without I/O
   std::vector<double> changes;  // d (m) where the mechanism changes
 };
 
@@ -145,17 +145,17 @@ struct Comparison {
   double d_max = 0.0;              // common range [0, d_max], d_max = min of the capacities
   std::vector<double> d;           // the d the thrust curves are compared at (CompareOptions::thrust_grid)
   std::vector<SupportCurve> supports;
-  double thrust_max_diff = 0.0;    // largest over supports and components, / W
-  double thrust_max_d = 0.0;       // m, where it occurs
-  std::string thrust_max_where;    // "H of left" (support id: case text)
-  double thrust_rms_diff = 0.0;    // root-mean-square over supports, components and grid points
-  bool symmetric = false;          // the block geometry is its own mirror image about x = xc
-  double hinge_gap = 0.0;          // m, opening beyond the settled gap a hinge needs (settled_gap)
+  double thrust_max_diff = 0.0;  // largest over supports and components, / W
+  double thrust_max_d = 0.0;     // m, where it occurs
+  std::string thrust_max_where;  // "H of left" (support id: case text)
+  double thrust_rms_diff = 0.0;  // root-mean-square over supports, components and grid points
+  bool symmetric = false;        // the block geometry is its own mirror image about x = xc
+  double hinge_gap = 0.0;        // m, opening beyond the settled gap a hinge needs (settled_gap)
   std::vector<HingeCheck> hinges;
   std::vector<MotionCheck> motion;  // mechanism agreement per checked interval
   int ring_shift = 0;               // the CompareOptions::ring_shift it was measured with
   std::string d_unit = "m";         // the path parameter's SI unit (path_unit): "m" or "rad"
-  double time_ratio = 0.0;         // time_b / time_a (NaN when time_a is 0)
+  double time_ratio = 0.0;          // time_b / time_a (NaN when time_a is 0)
   // What a run's results do not give is not compared (a results file need give only its
   // capacity and steps): the reason, or empty when compared. Thrust curves need every run's
   // reactions, hinges its joints and open corners, the mechanism agreement its joints, poses
@@ -188,8 +188,8 @@ struct CompareOptions {
 };
 
 // Both runs must come from `c` (same blocks, in order). Labels default to the method names.
-Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, const CompareOptions& o = {},
-                        const std::string& label_a = "", const std::string& label_b = "");
+Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, const CompareOptions& o = {}, const std::string& label_a = "",
+                        const std::string& label_b = "");
 
 // The stable records of a run: those with d <= capacity (the collapse record is left out).
 std::vector<const StepRecord*> stable_records(const RunResult& r);

@@ -85,7 +85,8 @@ ConvergenceVerdict judge(const Convergence& c) {
   for (const ConvergenceEntry& e : c.entries) {
     if (!located(e.run.status)) {
       v.complete = false;
-      v.problems.push_back(e.name + " (" + e.what + ") stopped with " + status_name(e.run.status) + std::string(e.run.message.empty() ? "" : ": " + e.run.message));
+      v.problems.push_back(e.name + " (" + e.what + ") stopped with " + status_name(e.run.status) +
+                           std::string(e.run.message.empty() ? "" : ": " + e.run.message));
       continue;
     }
     if (!lo || e.run.capacity < lo->run.capacity) lo = &e;
@@ -163,14 +164,16 @@ ojson convergence_json(const Convergence& c) {
     r["kn"] = e.run.settings.contains("kn") ? e.run.settings["kn"] : ojson(nullptr);
     if (const std::optional<HingeTally> h = hinge_tally(c, e.run))
       r["hinges_against_prd"] = {{"checks", h->checks}, {"same_joints", h->same}, {"within_one_joint", h->within_one}};
-    if (e.prd_on_run)
-      r["prd_on_run"] = prd_on_run_json(*e.prd_on_run);
-    if (c.scene && c.study == Study::stiffness && c.prd) r["parts_from_prd"] = parting_json(parting(c, e.run, *c.prd));
-    else if (c.scene && &e != &c.entries.front()) r["parts_from_default"] = parting_json(parting(c, e.run, c.entries.front().run));
+    if (e.prd_on_run) r["prd_on_run"] = prd_on_run_json(*e.prd_on_run);
+    if (c.scene && c.study == Study::stiffness && c.prd)
+      r["parts_from_prd"] = parting_json(parting(c, e.run, *c.prd));
+    else if (c.scene && &e != &c.entries.front())
+      r["parts_from_default"] = parting_json(parting(c, e.run, c.entries.front().run));
     runs.push_back(r);
   }
   j["runs"] = runs;
-  if (c.scene && c.prd && !c.entries.empty() && c.study == Study::convergence) j["default_parts_from_prd"] = parting_json(parting(c, c.entries.front().run, *c.prd));
+  if (c.scene && c.prd && !c.entries.empty() && c.study == Study::convergence)
+    j["default_parts_from_prd"] = parting_json(parting(c, c.entries.front().run, *c.prd));
   return j;
 }
 
@@ -180,14 +183,16 @@ std::string convergence_markdown(const Convergence& c) {
   Document d;
   if (stiffness) {
     d.title = "DEM joint stiffness: " + c.case_name;
-    d.paragraph({"The same case with the joints' normal and shear stiffness (kn, ks) scaled together, every other setting at the default. "
-                 "PRD's blocks are rigid, the limit of stiffening joints, and the elastic gaps and settling shrink as 1/kn: a difference "
-                 "from PRD that shrinks as the joints stiffen is elastic, not the protocol's. Stiffness belongs to the structure, so "
-                 "this is a measurement, with no limits. Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
+    d.paragraph(
+        {"The same case with the joints' normal and shear stiffness (kn, ks) scaled together, every other setting at the default. "
+         "PRD's blocks are rigid, the limit of stiffening joints, and the elastic gaps and settling shrink as 1/kn: a difference "
+         "from PRD that shrinks as the joints stiffen is elastic, not the protocol's. Stiffness belongs to the structure, so "
+         "this is a measurement, with no limits. Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
   } else {
     d.title = "DEM convergence: " + c.case_name;
-    d.paragraph({"The same case at the default DEM settings and at settings that must not change a quasi-static answer. "
-                 "Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
+    d.paragraph(
+        {"The same case at the default DEM settings and at settings that must not change a quasi-static answer. "
+         "Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
   }
   Table t;
   t.head = {"run", "what differs", "stopped", "capacity (m)", "against default", "against PRD", "bracket (mm)", "CPU (s)", "cycles"};
@@ -215,15 +220,16 @@ std::string convergence_markdown(const Convergence& c) {
     }
     if (tally) {
       const std::optional<HingeTally> h = hinge_tally(c, e.run);
-      t.rows.back().insert(t.rows.back().end() - 2, h ? std::to_string(h->same) + " (" + std::to_string(h->within_one) + ") / " +
-                                                            std::to_string(h->checks)
-                                                      : std::string("n/a"));
+      t.rows.back().insert(
+          t.rows.back().end() - 2,
+          h ? std::to_string(h->same) + " (" + std::to_string(h->within_one) + ") / " + std::to_string(h->checks) : std::string("n/a"));
     }
   }
   d.table(std::move(t));
   if (tally)
-    d.paragraph({"Hinges as PRD's: of the five hinge checks of PRD against the run (compare/README.md, \"Hinges\"), how many find the "
-                 "same joints and, in brackets, the same joints or a neighbour along the ring (\"Hinges one joint apart\")."});
+    d.paragraph(
+        {"Hinges as PRD's: of the five hinge checks of PRD against the run (compare/README.md, \"Hinges\"), how many find the "
+         "same joints and, in brackets, the same joints or a neighbour along the ring (\"Hinges one joint apart\")."});
   const auto has = [](const ConvergenceEntry& e) { return e.prd_on_run.has_value(); };
   if (const auto first = std::find_if(c.entries.begin(), c.entries.end(), has); first != c.entries.end()) {
     Text intro{Cell("PRD on each run's deformed configuration", CellStyle::strong), ": "};
@@ -255,18 +261,19 @@ std::string convergence_markdown(const Convergence& c) {
                  (std::isfinite(v.protocol_spread) ? fmt::number(100 * v.protocol_spread, "%.2f%%", 100 * v.protocol_spread) : std::string("n/a")) +
                  "; default against PRD: " + pct(v.prd_error) + " (limit " + fmt::g(100 * c.prd_limit) + "%)."});
   if (c.scene && !c.entries.empty()) {
-    d.paragraph({Cell("Where the mechanisms part", CellStyle::strong),
-                 " (for good: joints open wider than " + fmt::g(1e3 * kOpenOfScene * scene_size(*c.scene), 3) +
-                     " mm differ from there to the end of the common range):"});
+    d.paragraph({Cell("Where the mechanisms part", CellStyle::strong), " (for good: joints open wider than " +
+                                                                           fmt::g(1e3 * kOpenOfScene * scene_size(*c.scene), 3) +
+                                                                           " mm differ from there to the end of the common range):"});
     std::vector<Item> items;
     auto line = [&](const std::string& who, const std::string& other, const RunResult& a, const RunResult& b) {
       const std::optional<Parting> p = parting(c, a, b);
-      items.push_back({{who + ": " + (!p ? "no parting from " + other + " for good (open joints that differ, if any, close again before the end of the common range)"
-                                         : "from d = " + fmt::number(p->d, "%.4f", p->d) + " m, open only here: " + joined(p->only_a) +
-                                               "; only in " + other + ": " + joined(p->only_b) + ". At d = " +
-                                               fmt::number(p->end_d, "%.4f", p->end_d) + " m, the end of the common range, only here: " +
-                                               joined(p->end_only_a) + "; only in " + other + ": " + joined(p->end_only_b))},
-                       {}});
+      items.push_back(
+          {{who + ": " +
+            (!p ? "no parting from " + other + " for good (open joints that differ, if any, close again before the end of the common range)"
+                : "from d = " + fmt::number(p->d, "%.4f", p->d) + " m, open only here: " + joined(p->only_a) + "; only in " + other + ": " +
+                      joined(p->only_b) + ". At d = " + fmt::number(p->end_d, "%.4f", p->end_d) +
+                      " m, the end of the common range, only here: " + joined(p->end_only_a) + "; only in " + other + ": " + joined(p->end_only_b))},
+           {}});
     };
     if (stiffness) {
       // Each stiffness against the rigid limit.

@@ -34,14 +34,14 @@ struct Convergence {
   // 5e-5 x the scene size: 2 mm on the cathedrals, 0.1 mm on the pointed arch).
   const Case* scene = nullptr;
   std::optional<RunResult> prd;
-  double spread_limit = 0.02;             // (max - min) / default capacity
-  double prd_limit = 0.03;                // |default - PRD| / PRD
+  double spread_limit = 0.02;  // (max - min) / default capacity
+  double prd_limit = 0.03;     // |default - PRD| / PRD
 };
 
 // A stiffness study has no limits: ok when it is complete.
 struct ConvergenceVerdict {
-  bool complete = false;   // every run ended in a located collapse or max_steps
-  double spread = NAN;     // (max - min) / default over the runs, NaN when a run failed
+  bool complete = false;  // every run ended in a located collapse or max_steps
+  double spread = NAN;    // (max - min) / default over the runs, NaN when a run failed
   // The same over the runs at the default's joint stiffness (kn), the protocol's settings alone.
   // The joints' stiffness belongs to the structure: a run at another kn may differ by the
   // geometry its joints deform to (PRD on its configuration says), which no protocol removes.

@@ -1,14 +1,13 @@
 // Mechanism agreement: whether two runs move the same way over a checked interval of d, from the
 // joints' relative motion weighted by the forces they carry (compare/README.md, "Mechanism
 // agreement"). Threshold-free: a cosine between the two runs' weighted joint motions.
-#include "compare/compare.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
+#include "compare/compare.hpp"
 #include "model/energy.hpp"
 
 namespace masonry {
@@ -180,11 +179,11 @@ Motion relocated(const Case& c, const RunResult& a, const std::vector<JointFrame
       if (sp.steps == 0) continue;
       const size_t j = size_t(sp.joint);
       const double along = frames[k].n.dot(frames[j].n) < 0 ? -1.0 : 1.0;  // the higher block lies the other way along the ring
-      const double order = sp.corner == 0 ? 1.0 : -1.0;                     // k's A lands on j's B: the tangent turns round
+      const double order = sp.corner == 0 ? 1.0 : -1.0;                    // k's A lands on j's B: the tangent turns round
       const double f = along * order;
       // Corner A's opening and slip go to the spot's corner, B's to the other.
-      const std::array<double, 4> m = sp.corner == 0 ? std::array<double, 4>{v[0], f * v[1], v[2], f * v[3]}
-                                                     : std::array<double, 4>{v[2], f * v[3], v[0], f * v[1]};
+      const std::array<double, 4> m =
+          sp.corner == 0 ? std::array<double, 4>{v[0], f * v[1], v[2], f * v[3]} : std::array<double, 4>{v[2], f * v[3], v[0], f * v[1]};
       const double g = dot(to[j], m);
       if (g > gain) {
         gain = g;

@@ -102,22 +102,22 @@ std::vector<Figure> report_figures(const Report& r) {
     const ReportRun& B = r.runs[k + 1];
     const std::string n = std::to_string(k + 1);
     if (cmp.thrust_skipped.empty())
-      figs.push_back({"figures/thrust-" + n + ".svg", svg_thrust(cmp, *A.run, *B.run),
-                      "Thrust curves: " + A.label + " (solid) and " + B.label + " (dashed)"});
+      figs.push_back(
+          {"figures/thrust-" + n + ".svg", svg_thrust(cmp, *A.run, *B.run), "Thrust curves: " + A.label + " (solid) and " + B.label + " (dashed)"});
     int j = 0;
     for (double d : figure_ds(cmp)) {
       const StepRecord* sa = record_at(*A.run, d);
       const StepRecord* sb = record_at(*B.run, d);
       figs.push_back({"figures/structure-" + n + "-" + std::to_string(++j) + ".svg",
-                      svg_structure(*r.c, {panel(A, sa, d, unit), panel(B, sb, d, unit)}, frame),
-                      "d = " + mm(d) + " " + unit});
+                      svg_structure(*r.c, {panel(A, sa, d, unit), panel(B, sb, d, unit)}, frame), "d = " + mm(d) + " " + unit});
     }
     if (std::abs(cmp.a.capacity - cmp.b.capacity) > 1e-12) {
       const StepRecord* sa = record_at(*A.run, cmp.a.capacity);
       const StepRecord* sb = record_at(*B.run, cmp.b.capacity);
       figs.push_back({"figures/structure-" + n + "-" + std::to_string(++j) + ".svg",
-                      svg_structure(*r.c, {{A.run, sa, A.label, "at its capacity, d = " + mm(cmp.a.capacity) + " " + unit},
-                                           {B.run, sb, B.label, "at its capacity, d = " + mm(cmp.b.capacity) + " " + unit}},
+                      svg_structure(*r.c,
+                                    {{A.run, sa, A.label, "at its capacity, d = " + mm(cmp.a.capacity) + " " + unit},
+                                     {B.run, sb, B.label, "at its capacity, d = " + mm(cmp.b.capacity) + " " + unit}},
                                     frame),
                       "each method at its own capacity"});
     }
@@ -187,8 +187,10 @@ std::string least_agreement_text(const Comparison& k) {
   const MotionCheck* least = nullptr;
   const MotionCheck* collapse = nullptr;
   for (const MotionCheck& m : k.motion) {
-    if (m.collapse) collapse = &m;
-    else if (std::isfinite(m.agreement) && (!least || m.agreement < least->agreement)) least = &m;
+    if (m.collapse)
+      collapse = &m;
+    else if (std::isfinite(m.agreement) && (!least || m.agreement < least->agreement))
+      least = &m;
   }
   std::string s = least ? fmt::number(least->agreement, "%.3f", least->agreement) : "n/a";
   if (collapse && std::isfinite(collapse->agreement)) s += " (at collapse " + fmt::number(collapse->agreement, "%.3f", collapse->agreement) + ")";
@@ -243,8 +245,7 @@ Table headline(const Report& r) {
 }  // namespace
 
 Text prd_on_run_explained(double tolerance, const std::string& unit) {
-  return {"PRD started from the DEM's last equilibrium at or before 0.9 of its capacity (",
-          Cell("masonry prd --from", CellStyle::code),
+  return {"PRD started from the DEM's last equilibrium at or before 0.9 of its capacity (", Cell("masonry prd --from", CellStyle::code),
           "), every block where the DEM left it, its events located to " + fmt::mm(tolerance, 2) + " " + unit +
               " (the DEM's collapse bracket). Offsets kept: each touching joint corner's elastic overlap and shear become the "
               "joint's geometry, the blocks rigid from there as the joints had deformed them; taken back: PRD's first step undoes "
@@ -261,8 +262,13 @@ namespace {
 void deformed_section(Document& d, const Report& r) {
   Table t;
   const std::string unit = d_unit(r);
-  t.head = {"run", "from d (" + unit + ")", "its capacity (" + unit + ")", "PRD, offsets kept (" + unit + ")", "against the run",
-            "PRD, taken back (" + unit + ")", "PRD from the case (" + unit + ")"};
+  t.head = {"run",
+            "from d (" + unit + ")",
+            "its capacity (" + unit + ")",
+            "PRD, offsets kept (" + unit + ")",
+            "against the run",
+            "PRD, taken back (" + unit + ")",
+            "PRD from the case (" + unit + ")"};
   t.align.assign(t.head.size(), Align::right);
   t.align[0] = Align::left;
   double tolerance = 0;
@@ -286,13 +292,14 @@ void tolerance_section(Document& d, const Report& r) {
   d.heading(2, {"Tolerance checks"});
   std::string capacity = r.tolerances.capacity ? fmt::g(*r.tolerances.capacity * 100) + "%" : std::string();
   if (r.tolerances.capacity_abs) capacity += (capacity.empty() ? "" : " or ") + fmt::mm(*r.tolerances.capacity_abs, 1) + " mm";
-  d.paragraph({"Limits: capacity " + (capacity.empty() ? std::string("not checked") : capacity) +
-               ", thrust " + (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) + ", mechanism agreement " + (r.tolerances.mechanism ? "at least " + fmt::g(*r.tolerances.mechanism) : std::string("not checked")) +
+  d.paragraph({"Limits: capacity " + (capacity.empty() ? std::string("not checked") : capacity) + ", thrust " +
+               (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) + ", mechanism agreement " +
+               (r.tolerances.mechanism ? "at least " + fmt::g(*r.tolerances.mechanism) : std::string("not checked")) +
                (r.tolerances.collapse_mechanism ? ", at collapse at least " + fmt::g(*r.tolerances.collapse_mechanism) : std::string()) +
                ", hinges " +
                (!r.tolerances.hinges            ? std::string("not checked")
                 : r.tolerances.hinge_shift == 0 ? std::string("must match")
-                                                 : "must match within " + joints_text(r.tolerances.hinge_shift) + " along a ring") +
+                                                : "must match within " + joints_text(r.tolerances.hinge_shift) + " along a ring") +
                "."});
   std::vector<Item> items;
   for (size_t k = 0; k < r.comparisons.size(); ++k) {
@@ -370,25 +377,27 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
   const std::string unit = d_unit(r);
   d.heading(3, {"Mechanism agreement"});
   if (!cmp.mechanism_skipped.empty()) {
-    d.paragraph({"Mechanism agreement " + cmp.mechanism_skipped + " (the check moves the joints' corners with the blocks and weights "
+    d.paragraph({"Mechanism agreement " + cmp.mechanism_skipped +
+                 " (the check moves the joints' corners with the blocks and weights "
                  "each joint by the force it carries)."});
     return;
   }
-  d.paragraph({"Whether the two runs move the same way over each interval of d: every joint corner's relative displacement (the "
-               "two blocks' copies of the corner, so the supports' imposed motion counts for nothing), weighted by the normal force "
-               "the joint carries over W, and the cosine of the two runs' vectors: 1 for the same mechanism at any amplitude, 0 for "
-               "motions at other joints or in other directions; n/a where one run's joints do not move (blocks carried rigidly by "
-               "their supports)." +
-               std::string(cmp.symmetric ? " The scene is symmetric: the mirror image of the second run counts when it agrees better." : "") +
-               (cmp.ring_shift > 0 ? " A joint's motion may sit up to " + joints_text(cmp.ring_shift) +
-                                         " along a ring from the other run's, as a hinge may (the tolerances' hinge_shift; in brackets "
-                                         "the agreement at the same joints where that is lower)."
-                                   : std::string()) +
-               " The last row compares how the runs collapse, from each one's last equilibrium to its collapse state: the DEM's is its "
-               "fall when a block has drifted 2% of the scene, PRD's the configuration one step past its capacity, so large motions "
-               "past the first one take part. Where the agreement is below 1, the joints that differ most (their share of the "
-               "difference) and what each run does there (the second block's turn relative to the first, each corner's opening, the "
-               "slip). The hinge table below is the diagnostic of open corners at the interval ends."});
+  d.paragraph(
+      {"Whether the two runs move the same way over each interval of d: every joint corner's relative displacement (the "
+       "two blocks' copies of the corner, so the supports' imposed motion counts for nothing), weighted by the normal force "
+       "the joint carries over W, and the cosine of the two runs' vectors: 1 for the same mechanism at any amplitude, 0 for "
+       "motions at other joints or in other directions; n/a where one run's joints do not move (blocks carried rigidly by "
+       "their supports)." +
+       std::string(cmp.symmetric ? " The scene is symmetric: the mirror image of the second run counts when it agrees better." : "") +
+       (cmp.ring_shift > 0 ? " A joint's motion may sit up to " + joints_text(cmp.ring_shift) +
+                                 " along a ring from the other run's, as a hinge may (the tolerances' hinge_shift; in brackets "
+                                 "the agreement at the same joints where that is lower)."
+                           : std::string()) +
+       " The last row compares how the runs collapse, from each one's last equilibrium to its collapse state: the DEM's is its "
+       "fall when a block has drifted 2% of the scene, PRD's the configuration one step past its capacity, so large motions "
+       "past the first one take part. Where the agreement is below 1, the joints that differ most (their share of the "
+       "difference) and what each run does there (the second block's turn relative to the first, each corner's opening, the "
+       "slip). The hinge table below is the diagnostic of open corners at the interval ends."});
   Table t;
   t.head = {"d (" + unit + ")", "agreement", "differs most at"};
   t.align = {Align::right, Align::right, Align::left};
@@ -421,10 +430,10 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   d.heading(2, {cmp.a.label + " against " + cmp.b.label});
   d.heading(3, {"Thrust curves"});
   std::string p = "Horizontal (H) and vertical (V) reaction of every support over the total weight W = " + fmt::kn(cmp.total_weight) +
-                  " kN, against d. Compared on the common range d = 0 to " + fmt::mm(cmp.d_max) + " " + unit + " (" +
-                  std::to_string(cmp.d.size()) + " points, every record of either run, linear interpolation between records): largest difference " +
-                  fmt::g(cmp.thrust_max_diff) + " W (" + cmp.thrust_max_where + " at d = " + fmt::mm(cmp.thrust_max_d) + " " + unit +
-                  "), root-mean-square " + fmt::g(cmp.thrust_rms_diff) + " W.";
+                  " kN, against d. Compared on the common range d = 0 to " + fmt::mm(cmp.d_max) + " " + unit + " (" + std::to_string(cmp.d.size()) +
+                  " points, every record of either run, linear interpolation between records): largest difference " + fmt::g(cmp.thrust_max_diff) +
+                  " W (" + cmp.thrust_max_where + " at d = " + fmt::mm(cmp.thrust_max_d) + " " + unit + "), root-mean-square " +
+                  fmt::g(cmp.thrust_rms_diff) + " W.";
   if (cmp.thrust_max_d == 0.0 && cmp.d_max > 0)
     p += " At d = 0 the structure is statically indeterminate: PRD reports one admissible force state among many, the DEM "
          "the one its settling under gravity finds, so a difference there is expected (the paper, Section 4: PRD gives \"just one of "
@@ -445,7 +454,8 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
     // The page's copy carries the cursor the slider moves.
     d.figure(f->file, f->caption, page ? svg_thrust(cmp, *r.runs[0].run, *r.runs[k + 1].run, true) : std::string());
   d.heading(3, {"Mechanism changes"});
-  d.paragraph({"d (" + unit + ") where the set of open joint corners changes (a state held for a single record is taken as flicker and not "
+  d.paragraph({"d (" + unit +
+               ") where the set of open joint corners changes (a state held for a single record is taken as flicker and not "
                "counted):"});
   d.list({{{cmp.a.label + ": " + changes_text(cmp.a)}, {}}, {{cmp.b.label + ": " + changes_text(cmp.b)}, {}}});
   mechanism_section(d, r, cmp);
@@ -459,7 +469,8 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
                                                " of the other run's along a ring, turning about the same side, counts as the same "
                                                "(the tolerances' hinge_shift; compare/README.md, \"Hinges one joint apart\")."
                                          : std::string())});
-  d.paragraph({"Joints open at d = 0, before any support motion (the settled crack pattern; a DEM's later hinges are measured from its gaps there):"});
+  d.paragraph(
+      {"Joints open at d = 0, before any support motion (the settled crack pattern; a DEM's later hinges are measured from its gaps there):"});
   d.list(settled_cracks(r));
   if (cmp.hinge_gap > 0)
     d.paragraph({"Hinges of the support motion: a corner counts as open when its gap has grown by more than " + fmt::g(cmp.hinge_gap * 1e3) +
@@ -473,11 +484,11 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   for (const HingeCheck& x : cmp.hinges) {
     const std::string apart = x.shift > 0 ? joints_text(x.shift) + " apart" : std::string();
     h.rows.push_back({fmt::mm(x.d), hinge_list(x.a), hinge_list(x.b),
-                      x.match                   ? Cell("yes")
-                      : x.mirror                ? Cell("mirror image")
+                      x.match                  ? Cell("yes")
+                      : x.mirror               ? Cell("mirror image")
                       : x.ok(allowed_shift(r)) ? Cell("yes, " + apart)
-                      : x.shift > 0             ? Cell("no (" + apart + ")", CellStyle::strong)
-                                                : Cell("no", CellStyle::strong)});
+                      : x.shift > 0            ? Cell("no (" + apart + ")", CellStyle::strong)
+                                               : Cell("no", CellStyle::strong)});
   }
   if (!h.rows.empty()) d.table(std::move(h));
   // Static drawings at chosen steps: the Markdown's; the page has the slider instead.
@@ -564,7 +575,8 @@ Document report_document(const Report& r, const std::vector<Figure>& figures, in
   for (size_t k = 0; k < r.comparisons.size(); ++k) comparison_section(d, r, k, figures, page);
   d.heading(2, {"Runs"});
   d.table(runs_table(r));
-  d.paragraph({"Their settings (", Cell("results.json", CellStyle::code), ", ", Cell("settings", CellStyle::code), "; SI units, friction in degrees):"});
+  d.paragraph(
+      {"Their settings (", Cell("results.json", CellStyle::code), ", ", Cell("settings", CellStyle::code), "; SI units, friction in degrees):"});
   d.table(settings_table(r));
   d.paragraph({"Numbers: ", Cell("comparison.json", CellStyle::code), "."});
   return d;
@@ -575,7 +587,8 @@ Document report_document(const Report& r, const std::vector<Figure>& figures, in
 // slider.
 const char* kErrorScript =
     "(function(){\n"
-    "  function rec(m){var e=document.getElementById('errors');if(e){e.textContent+=m+'\\n';e.hidden=false;}else{window.__early=(window.__early||'')+m+'\\n';}}\n"
+    "  function rec(m){var "
+    "e=document.getElementById('errors');if(e){e.textContent+=m+'\\n';e.hidden=false;}else{window.__early=(window.__early||'')+m+'\\n';}}\n"
     "  window.__rec=rec;\n"
     "  window.addEventListener('error',function(e){rec('error: '+(e.message||e.type));},true);\n"
     "  window.addEventListener('unhandledrejection',function(e){rec('unhandled rejection: '+e.reason);});\n"
@@ -621,9 +634,10 @@ std::string report_html(const Report& r, const std::vector<Figure>& figures, int
   p.title = r.c->name + ": comparison";
   p.script_nonce = script_nonce();
   p.head = "<script nonce=\"" + p.script_nonce + "\">\n" + kErrorScript + "</script>\n";
-  p.style = ".pass{color:#1a7f37;font-weight:bold}.fail{color:#c0392b;font-weight:bold}\n"
-            "#controls{position:sticky;top:0;background:#fff;padding:6px 0;border-bottom:1px solid #ddd;z-index:1}\n"
-            "#slider{width:70%;vertical-align:middle}#frame-label{font-weight:bold;margin-left:1em}\n#errors{color:#c0392b}\n";
+  p.style =
+      ".pass{color:#1a7f37;font-weight:bold}.fail{color:#c0392b;font-weight:bold}\n"
+      "#controls{position:sticky;top:0;background:#fff;padding:6px 0;border-bottom:1px solid #ddd;z-index:1}\n"
+      "#slider{width:70%;vertical-align:middle}#frame-label{font-weight:bold;margin-left:1em}\n#errors{color:#c0392b}\n";
   p.body = "<pre id=\"errors\" hidden></pre>\n" + html_body(d) + "<script nonce=\"" + p.script_nonce + "\">\n" + kSliderScript + "</script>\n";
   return html_page(p);
 }

@@ -13,9 +13,9 @@
 namespace masonry {
 
 struct ReportRun {
-  std::string label;               // "PRD", "DEM phi=35 deg"
+  std::string label;  // "PRD", "DEM phi=35 deg"
   const RunResult* run = nullptr;
-  std::string dir;                 // its results directory, relative to the report (may be empty)
+  std::string dir;                                    // its results directory, relative to the report (may be empty)
   std::optional<PrdOnRun> prd_on_run = std::nullopt;  // a DEM run: PRD on its deformed configuration (runs/run.hpp)
 };
 
@@ -27,17 +27,16 @@ struct Report {
   bool tolerances_checked = false;
   Tolerances tolerances;
   std::vector<std::vector<std::string>> violations;  // per comparison
-  std::string command;  // how the report was made (shown verbatim, escaped)
-  int frames = 0;       // slider positions in report.html (0: chosen from the scene size)
-  std::vector<std::string> notes;  // the author's paragraphs on the result (plain text), after the checks
+  std::string command;                               // how the report was made (shown verbatim, escaped)
+  int frames = 0;                                    // slider positions in report.html (0: chosen from the scene size)
+  std::vector<std::string> notes;                    // the author's paragraphs on the result (plain text), after the checks
 };
 
 // Builds the comparisons (and, with `t`, the tolerance checks) of runs[0] against the others.
-Report make_report(const Case& c, const std::vector<ReportRun>& runs, const Tolerances* t = nullptr,
-                   const CompareOptions& o = {});
+Report make_report(const Case& c, const std::vector<ReportRun>& runs, const Tolerances* t = nullptr, const CompareOptions& o = {});
 
 struct Figure {
-  std::string file;     // relative path, e.g. "figures/thrust-1.svg"
+  std::string file;  // relative path, e.g. "figures/thrust-1.svg"
   std::string svg;
   std::string caption;  // plain text
 };

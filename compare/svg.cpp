@@ -1,17 +1,16 @@
 #include "compare/svg.hpp"
 
-#include "model/energy.hpp"
-
-#include "report/escape.hpp"
-#include "report/format.hpp"
-#include "report/svg.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
 #include <sstream>
+
+#include "model/energy.hpp"
+#include "report/escape.hpp"
+#include "report/format.hpp"
+#include "report/svg.hpp"
 
 namespace masonry {
 
@@ -111,8 +110,8 @@ bool reaction_point(const RunResult& r, const StepRecord& s, int support, Vec2& 
   return true;
 }
 
-void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const DrawFrame& f, const Map& m, double width,
-                const std::string& id, bool titles) {
+void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const DrawFrame& f, const Map& m, double width, const std::string& id,
+                bool titles) {
   o << "<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.oy - 24) << "\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">"
     << xml_escape(pn.title) << "</text>\n<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.oy - 7)
     << "\" text-anchor=\"middle\" font-size=\"13\">" << xml_escape(pn.subtitle) << "</text>\n";
@@ -198,15 +197,15 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
     Vec2 p;
     if (b < 0 || !reaction_point(r, s, b, p)) continue;
     const Vec2 tail = p - re.force / f.weight * f.force_len;
-    o << "<line x1=\"" << px(m.X(tail.x())) << "\" y1=\"" << px(m.Y(tail.y())) << "\" x2=\"" << px(m.X(p.x())) << "\" y2=\""
-      << px(m.Y(p.y())) << "\" stroke=\"" << kReaction << "\" stroke-width=\"2.6\" marker-end=\"url(#" << id << "arr)\"/>\n";
+    o << "<line x1=\"" << px(m.X(tail.x())) << "\" y1=\"" << px(m.Y(tail.y())) << "\" x2=\"" << px(m.X(p.x())) << "\" y2=\"" << px(m.Y(p.y()))
+      << "\" stroke=\"" << kReaction << "\" stroke-width=\"2.6\" marker-end=\"url(#" << id << "arr)\"/>\n";
     // Label under the arrow's tail, kept inside the panel; two short lines so that the labels
     // of neighbouring supports do not run into each other.
     const double lx = std::clamp(m.X(tail.x()), m.ox + 35, m.ox + width - 35);
     const double ly = m.Y(tail.y());
-    o << "<text x=\"" << px(lx) << "\" y=\"" << px(ly + 13) << "\" font-size=\"11\" fill=\"" << kReaction
-      << "\" text-anchor=\"middle\">H " << fmt::g(re.force.x() / f.weight) << " W</text><text x=\"" << px(lx) << "\" y=\"" << px(ly + 26)
-      << "\" font-size=\"11\" fill=\"" << kReaction << "\" text-anchor=\"middle\">V " << fmt::g(re.force.y() / f.weight) << " W</text>\n";
+    o << "<text x=\"" << px(lx) << "\" y=\"" << px(ly + 13) << "\" font-size=\"11\" fill=\"" << kReaction << "\" text-anchor=\"middle\">H "
+      << fmt::g(re.force.x() / f.weight) << " W</text><text x=\"" << px(lx) << "\" y=\"" << px(ly + 26) << "\" font-size=\"11\" fill=\"" << kReaction
+      << "\" text-anchor=\"middle\">V " << fmt::g(re.force.y() / f.weight) << " W</text>\n";
   }
   // The imposed motion: a grey arrow beside each moving support (off to its side, clear of the
   // structure above it), along its translation, and an arc for a rotation (counter-clockwise
@@ -237,8 +236,7 @@ void draw_panel(std::ostringstream& o, const Case& c, const Panel& pn, const Dra
   // Status line under the drawing.
   const size_t nh = hinges_of(c, r, s, f.hinge_gap).size();
   o << "<text x=\"" << px(m.ox + width / 2) << "\" y=\"" << px(m.Y(f.lo.y()) + 16) << "\" text-anchor=\"middle\" font-size=\"12\" fill=\"#333\">"
-    << s.cracked.size() << " cracked joint" << (s.cracked.size() == 1 ? "" : "s") << ", " << nh << " hinge" << (nh == 1 ? "" : "s")
-    << "</text>\n";
+    << s.cracked.size() << " cracked joint" << (s.cracked.size() == 1 ? "" : "s") << ", " << nh << " hinge" << (nh == 1 ? "" : "s") << "</text>\n";
 }
 
 }  // namespace
@@ -279,17 +277,18 @@ DrawFrame draw_frame(const Case& c, const std::vector<const RunResult*>& runs) {
   return f;
 }
 
-std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const DrawFrame& f, double panel_width,
-                          const std::string& id, bool titles) {
+std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const DrawFrame& f, double panel_width, const std::string& id,
+                          bool titles) {
   const double gap = 20, top = 46, legend_h = 64;
   const double s = panel_width / std::max(1e-12, f.hi.x() - f.lo.x());
   const double ph = (f.hi.y() - f.lo.y()) * s;
   const double W = panels.size() * panel_width + (panels.size() + 1) * gap;
   const double H = top + ph + 24 + legend_h;
   std::ostringstream o;
-  o << svg_open(W, H) << arrow_defs(id)
-    << "<defs><pattern id=\"" << id << "hatch\" width=\"6\" height=\"6\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(45)\">"
-       "<rect width=\"6\" height=\"6\" fill=\"#cfcfcf\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"6\" stroke=\"#8a8a8a\" stroke-width=\"1.5\"/></pattern></defs>\n";
+  o << svg_open(W, H) << arrow_defs(id) << "<defs><pattern id=\"" << id
+    << "hatch\" width=\"6\" height=\"6\" patternUnits=\"userSpaceOnUse\" patternTransform=\"rotate(45)\">"
+       "<rect width=\"6\" height=\"6\" fill=\"#cfcfcf\"/><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"6\" stroke=\"#8a8a8a\" "
+       "stroke-width=\"1.5\"/></pattern></defs>\n";
   for (size_t k = 0; k < panels.size(); ++k) {
     const Map m{gap + k * (panel_width + gap), top, s, f.lo.x(), f.hi.y()};
     o << "<g class=\"panel\">\n";
@@ -307,17 +306,18 @@ std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const
   item("<line x1=\"0\" y1=\"0\" x2=\"24\" y2=\"0\" stroke=\"#111\" stroke-width=\"3\"/>", "cracked joint", 120);
   item(std::string("<circle cx=\"12\" cy=\"0\" r=\"5\" fill=\"#fff\" stroke=\"") + kHinge + "\" stroke-width=\"2.2\"/>", "hinge", 80);
   item(std::string("<line x1=\"0\" y1=\"0\" x2=\"24\" y2=\"0\" stroke=\"") + kThrustLine + "\" stroke-width=\"2\"/>", "thrust line", 110);
-  item(std::string("<line x1=\"0\" y1=\"0\" x2=\"24\" y2=\"0\" stroke=\"") + kForce + "\" stroke-width=\"1.6\"/><circle cx=\"12\" cy=\"0\" r=\"2.2\" fill=\"" +
-           kForce + "\"/>",
+  item(std::string("<line x1=\"0\" y1=\"0\" x2=\"24\" y2=\"0\" stroke=\"") + kForce +
+           "\" stroke-width=\"1.6\"/><circle cx=\"12\" cy=\"0\" r=\"2.2\" fill=\"" + kForce + "\"/>",
        "joint resultant", 130);
-  item(std::string("<line x1=\"0\" y1=\"0\" x2=\"22\" y2=\"0\" stroke=\"") + kReaction + "\" stroke-width=\"2.6\" marker-end=\"url(#" + id + "arr)\"/>",
+  item(std::string("<line x1=\"0\" y1=\"0\" x2=\"22\" y2=\"0\" stroke=\"") + kReaction + "\" stroke-width=\"2.6\" marker-end=\"url(#" + id +
+           "arr)\"/>",
        "support reaction (W = total weight)", 250);
   item(std::string("<line x1=\"0\" y1=\"0\" x2=\"22\" y2=\"0\" stroke=\"#555\" stroke-width=\"2.4\" marker-end=\"url(#") + id + "mot)\"/>",
        "imposed motion", 130);
   const double bar = 0.1 * f.force_len * s;
-  o << "<g transform=\"translate(" << px(gap) << "," << px(ly + 22) << ")\"><line x1=\"0\" y1=\"0\" x2=\"" << px(bar)
-    << "\" y2=\"0\" stroke=\"" << kForce << "\" stroke-width=\"1.6\"/><line x1=\"0\" y1=\"-4\" x2=\"0\" y2=\"4\" stroke=\"" << kForce
-    << "\"/><line x1=\"" << px(bar) << "\" y1=\"-4\" x2=\"" << px(bar) << "\" y2=\"4\" stroke=\"" << kForce << "\"/><text x=\"" << px(bar + 8)
+  o << "<g transform=\"translate(" << px(gap) << "," << px(ly + 22) << ")\"><line x1=\"0\" y1=\"0\" x2=\"" << px(bar) << "\" y2=\"0\" stroke=\""
+    << kForce << "\" stroke-width=\"1.6\"/><line x1=\"0\" y1=\"-4\" x2=\"0\" y2=\"4\" stroke=\"" << kForce << "\"/><line x1=\"" << px(bar)
+    << "\" y1=\"-4\" x2=\"" << px(bar) << "\" y2=\"4\" stroke=\"" << kForce << "\"/><text x=\"" << px(bar + 8)
     << "\" y=\"4\" font-size=\"12\">force scale: 0.1 W = " << fmt::kn(0.1 * f.weight) << " kN; hatched: supports</text></g>\n";
   o << "</svg>\n";
   return o.str();
@@ -338,8 +338,8 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
   for (const SupportCurve& sc : k.supports) supports.push_back(sc.support);
   std::ostringstream o;
   o << svg_open(W, H, "class=\"thrust\" data-x0=\"" + px(left) + "\" data-sx=\"" + fmt::g(sx, 10) + "\"");
-  o << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Support reactions over total weight W = "
-    << fmt::kn(W_n) << " kN</text>\n";
+  o << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Support reactions over total weight W = " << fmt::kn(W_n)
+    << " kN</text>\n";
   for (int comp = 0; comp < 2; ++comp) {
     const double oy = top + comp * (ph + between);
     // Value range over both runs, all supports, with zero included.
@@ -363,7 +363,8 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
     const Plot plot{left, oy, pw, ph, 0, dmax, lo, hi};
     const auto X = [&](double d) { return plot.X(d); };
     const auto Y = [&](double v) { return plot.Y(v); };
-    o << svg_axes(plot, linear_ticks(0, dmax, 8, 4, 1000), linear_ticks(lo, hi, 6, 3), (k.d_unit == "rad" ? "support rotation d (" : "support displacement d (") + milli(k.d_unit) + ")",
+    o << svg_axes(plot, linear_ticks(0, dmax, 8, 4, 1000), linear_ticks(lo, hi, 6, 3),
+                  (k.d_unit == "rad" ? "support rotation d (" : "support displacement d (") + milli(k.d_unit) + ")",
                   comp == 0 ? "horizontal reaction H / W" : "vertical reaction V / W");
     // Mechanism changes: ticks at the top (a) and the bottom (b) of the panel, and the capacities.
     const auto marks = [&](const RunSummary& rs, bool at_top, const char* dash) {
@@ -401,15 +402,15 @@ std::string svg_thrust(const Comparison& k, const RunResult& a, const RunResult&
   o << "<g font-size=\"12\">\n";
   for (int run = 0; run < 2; ++run) {
     const RunSummary& rs = run == 0 ? k.a : k.b;
-    o << "<line x1=\"" << px(lx) << "\" x2=\"" << px(lx + 30) << "\" y1=\"" << px(ly) << "\" y2=\"" << px(ly) << "\" stroke=\"#333\" stroke-width=\"2\""
-      << (run == 1 ? " stroke-dasharray=\"7,4\"" : "") << "/><text x=\"" << px(lx + 36) << "\" y=\"" << px(ly + 4) << "\">" << xml_escape(rs.label)
-      << "</text>\n";
+    o << "<line x1=\"" << px(lx) << "\" x2=\"" << px(lx + 30) << "\" y1=\"" << px(ly) << "\" y2=\"" << px(ly)
+      << "\" stroke=\"#333\" stroke-width=\"2\"" << (run == 1 ? " stroke-dasharray=\"7,4\"" : "") << "/><text x=\"" << px(lx + 36) << "\" y=\""
+      << px(ly + 4) << "\">" << xml_escape(rs.label) << "</text>\n";
     ly += 20;
   }
   ly += 6;
   for (size_t si = 0; si < supports.size(); ++si) {
-    o << "<rect x=\"" << px(lx) << "\" y=\"" << px(ly - 6) << "\" width=\"30\" height=\"10\" fill=\"" << series_color(si)
-      << "\"/><text x=\"" << px(lx + 36) << "\" y=\"" << px(ly + 4) << "\">" << xml_escape(supports[si]) << "</text>\n";
+    o << "<rect x=\"" << px(lx) << "\" y=\"" << px(ly - 6) << "\" width=\"30\" height=\"10\" fill=\"" << series_color(si) << "\"/><text x=\""
+      << px(lx + 36) << "\" y=\"" << px(ly + 4) << "\">" << xml_escape(supports[si]) << "</text>\n";
     ly += 18;
   }
   ly += 10;
@@ -435,7 +436,8 @@ std::string svg_capacity(const std::vector<Bar>& bars, const std::string& unit) 
     if (std::isfinite(b.value)) vmax = std::max(vmax, b.value);
   if (!(vmax > 0)) vmax = 1e-3;
   std::ostringstream o;
-  o << svg_open(W, H) << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Displacement capacity (last stable d)</text>\n";
+  o << svg_open(W, H) << "<text x=\"" << px(left)
+    << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">Displacement capacity (last stable d)</text>\n";
   for (size_t k = 0; k < bars.size(); ++k) {
     const double y = top + k * (bh + gap);
     const double w = std::isfinite(bars[k].value) ? bars[k].value / vmax * bw : 0;
@@ -444,7 +446,8 @@ std::string svg_capacity(const std::vector<Bar>& bars, const std::string& unit) 
       << xml_escape(bars[k].color) << "\"/><text x=\"" << px(left + w + 6) << "\" y=\"" << px(y + bh / 2 + 5) << "\" font-size=\"13\">"
       << (std::isfinite(bars[k].value) ? fmt::mm(bars[k].value) + " " + xml_escape(unit) : "n/a") << "</text>\n";
   }
-  o << "<line x1=\"" << px(left) << "\" x2=\"" << px(left) << "\" y1=\"" << px(top - 4) << "\" y2=\"" << px(H - 26) << "\" stroke=\"#333\"/>\n</svg>\n";
+  o << "<line x1=\"" << px(left) << "\" x2=\"" << px(left) << "\" y1=\"" << px(top - 4) << "\" y2=\"" << px(H - 26)
+    << "\" stroke=\"#333\"/>\n</svg>\n";
   return o.str();
 }
 

@@ -13,10 +13,10 @@ namespace masonry {
 // World window and force scale shared by every structure drawing of one comparison, so frames
 // do not jump and forces are comparable between methods and steps.
 struct DrawFrame {
-  Vec2 lo{0, 0}, hi{1, 1};   // world window, m
-  double force_len = 1.0;    // m of drawing per unit of F / W
-  double weight = 1.0;       // N, total weight (forces are drawn relative to it)
-  double hinge_gap = 0.0;    // m, the opening a hinge needs beyond its settled gap (settled_gap)
+  Vec2 lo{0, 0}, hi{1, 1};  // world window, m
+  double force_len = 1.0;   // m of drawing per unit of F / W
+  double weight = 1.0;      // N, total weight (forces are drawn relative to it)
+  double hinge_gap = 0.0;   // m, the opening a hinge needs beyond its settled gap (settled_gap)
 };
 // The window covering every stable record of the runs, with room for the reaction arrows; the
 // hinge rule of the runs' comparisons (the widest settled gap of any of them).
@@ -34,8 +34,8 @@ struct Panel {
 // distinct ids, since a definition inside a hidden drawing does not render for the others.
 // `titles`: every block a path of its own with its id as a tooltip (the figures); without, the
 // blocks are one path per fill (the page's slider, which repeats the drawing at every position).
-std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const DrawFrame& f, double panel_width = 470,
-                          const std::string& id = "s", bool titles = true);
+std::string svg_structure(const Case& c, const std::vector<Panel>& panels, const DrawFrame& f, double panel_width = 470, const std::string& id = "s",
+                          bool titles = true);
 
 // H/W and V/W of every support against d (mm), both runs over their own stable range, mechanism
 // changes marked, capacities marked. With `cursor`, the SVG carries a vertical cursor line per

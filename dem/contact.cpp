@@ -168,8 +168,8 @@ bool collide(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2*
   return collide_cached(va, na, ca, vb, nb, cb, 0.0, 0.0, fresh, m);
 }
 
-bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, double motion,
-                    double lever, SatCache& cache, Manifold& m) {
+bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, double motion, double lever, SatCache& cache,
+                    Manifold& m) {
   m.count = 0;
   // Box2D's hysteresis: face A unless B is clearly better, so the choice does not flicker.
   const double k_tol = 0.1 * b2_linearSlop;
@@ -188,8 +188,8 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
       // no separation can have closed by more than the motion since, so nothing to compute.
       cache.slack -= motion;
       if (cache.slack > 0) return false;
-      const double sep = cache.state == SatCache::kApartA ? edge_separation(cache.edge_a, va, na, vb, cb)
-                                                          : edge_separation(cache.edge_b, vb, nb, va, ca);
+      const double sep =
+          cache.state == SatCache::kApartA ? edge_separation(cache.edge_a, va, na, vb, cb) : edge_separation(cache.edge_b, vb, nb, va, ca);
       if (sep > 0) {
         cache.slack = 0.5 * sep;
         return false;
@@ -210,8 +210,7 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
         searched = flip == cache.flip;  // always, by the slack; a mismatch would mean a bad bound
       }
       break;
-    case SatCache::kNone:
-      break;
+    case SatCache::kNone: break;
   }
   if (!searched) {
     double second_a = 0, second_b = 0;
@@ -252,8 +251,7 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
     cache.inc = static_cast<unsigned char>(inc);
     // The incident edge's lead is a difference of dot products of unit normals; it changes by at
     // most twice the relative rotation, and the lever turns rotation into motion.
-    cache.slack = 0.25 * std::min({sep_a - second_a, sep_b - second_b, std::abs(sep_b - (sep_a + k_tol)),
-                                   (second_dot - min_dot) * lever});
+    cache.slack = 0.25 * std::min({sep_a - second_a, sep_b - second_b, std::abs(sep_b - (sep_a + k_tol)), (second_dot - min_dot) * lever});
   }
   const Vec2 *v1 = flip ? vb : va, *n1 = flip ? nb : na, *v2 = flip ? va : vb;
   const int c1 = flip ? cb : ca, c2 = flip ? ca : cb, e1 = flip ? edge_b : edge_a;

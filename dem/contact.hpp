@@ -65,7 +65,7 @@ struct SatCache {
 // distance of the vertices from their block's centre of rotation and L the largest distance
 // between a vertex of A and a vertex of B (see DemModel's step()). `lever` is that L, which also
 // converts the incident-edge choice (a dot product of unit normals) into a length.
-bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, double motion,
-                    double lever, SatCache& cache, Manifold& m);
+bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, double motion, double lever, SatCache& cache,
+                    Manifold& m);
 
 }  // namespace masonry::dem

@@ -55,19 +55,19 @@ class DemModel {
   DemModel(const DemModel&) = delete;
   DemModel& operator=(const DemModel&) = delete;
 
-  double kn() const;           // normal joint stiffness used, Pa/m
-  double ks() const;           // shear joint stiffness used, Pa/m
+  double kn() const;  // normal joint stiffness used, Pa/m
+  double ks() const;  // shear joint stiffness used, Pa/m
   // Bound on the critical time step: 2 / sqrt(2 max_b [(kn+ks) depth P_b / m_b + max(kn,ks)
   // depth J_b / I_b]), P_b the perimeter and J_b = sum over edges of L (|p-c|^2 + |q-c|^2) / 2:
   // every manifold point carries at most (its share of) the edge length, a block's stiffness is
   // bounded by its whole perimeter in contact, and the 2 covers coupling to a neighbour.
   double critical_dt() const;
-  double dt() const;           // timestep_factor * critical_dt
+  double dt() const;  // timestep_factor * critical_dt
   // Factor on every free block's inertia (mass and moment): the acceleration the dead loads give
   // the structure over kReferenceGravity (1 at g = 9.81). Times, speeds and kinetic
   // energies are those of the scaled model.
   double mass_scale() const;
-  double time() const;         // model time, s
+  double time() const;  // model time, s
   long long cycles() const;
 
   // Places the prescribed supports at path parameter d (they move there during the next cycle).
@@ -96,8 +96,8 @@ class DemModel {
   // the current positions (half a step ahead of the energies above, so a bound on them):
   // kinetic + spring energy + dissipation equals it, to within the scheme's error.
   double energy_input() const;
-  int contact_points() const;   // manifold points in contact
-  double max_overlap() const;   // m
+  int contact_points() const;  // manifold points in contact
+  double max_overlap() const;  // m
   long long broadphase_rebuilds() const;
 
   DemSnapshot save() const;

@@ -213,8 +213,8 @@ void DemModel::Impl::set_time_step() {
   if (!(s.timestep_factor > 0) || !std::isfinite(s.timestep_factor) || (s.timestep_factor > 1 && !s.allow_unstable_timestep)) {
     std::ostringstream m;
     m << c.source << ": dem: field 'timestep_factor' = " << s.timestep_factor << " is outside (0, 1]: the time step would be "
-      << s.timestep_factor * dt_crit << " s against a stability limit of " << dt_crit
-      << " s (kn " << kn << " Pa/m, lightest/stiffest block); refusing to run an unstable integration";
+      << s.timestep_factor * dt_crit << " s against a stability limit of " << dt_crit << " s (kn " << kn
+      << " Pa/m, lightest/stiffest block); refusing to run an unstable integration";
     throw std::runtime_error(m.str());
   }
   dt = s.timestep_factor * dt_crit;
@@ -241,8 +241,8 @@ void DemModel::Impl::check_joint_stiffness() const {
     const double size = std::sqrt(std::abs(signed_area(c.blocks[b].vertices)));
     if (overlap <= kMaxOverlap * size) continue;
     std::ostringstream m;
-    m << c.source << ": block '" << printable(c.blocks[b].id) << "': field 'depth': its joints would overlap by at least "
-      << overlap << " m under its own weight (" << wref[b] << " N over kn " << kn << " Pa/m x " << area[b]
+    m << c.source << ": block '" << printable(c.blocks[b].id) << "': field 'depth': its joints would overlap by at least " << overlap
+      << " m under its own weight (" << wref[b] << " N over kn " << kn << " Pa/m x " << area[b]
       << " m^2 of joints, each at the smaller depth of its two blocks), over " << kMaxOverlap * 100
       << "% of its size: far too soft a joint for a rigid-block model; match the depths or raise dem.young_modulus or dem.kn";
     throw CaseError(m.str());
@@ -386,8 +386,8 @@ void DemModel::Impl::contact_forces() {
     const Vec2 old_point[2] = {pr.pt[0].point, pr.pt[1].point};
     pr.n = 0;
     const double motion = moved[ba] + moved[bb] + (turned[ba] + turned[bb]) * pr.lever;
-    if (!dem::collide_cached(&world_v[piece_off[pa]], &world_n[piece_off[pa]], piece_cnt[pa], &world_v[piece_off[pb]],
-                             &world_n[piece_off[pb]], piece_cnt[pb], motion, pr.lever, pr.sat, m))
+    if (!dem::collide_cached(&world_v[piece_off[pa]], &world_n[piece_off[pa]], piece_cnt[pa], &world_v[piece_off[pb]], &world_n[piece_off[pb]],
+                             piece_cnt[pb], motion, pr.lever, pr.sat, m))
       continue;
     const double dep = std::min(depth[ba], depth[bb]);
     // Each point stands for half of the clipped joint, whether or not its partner is in contact,
@@ -468,8 +468,14 @@ void DemModel::Impl::integrate() {
       const double M = torque[b];
       unb = std::max(unb, std::max(F.norm(), std::abs(M) / gyr[b]) / wref[b]);
       // Local (non-viscous) damping: a fraction of the unbalanced force opposes the motion.
-      Vec2 Fd(F.x() - alpha * std::abs(F.x()) * (vel[b].x() > 0 ? 1 : vel[b].x() < 0 ? -1 : 0),
-              F.y() - alpha * std::abs(F.y()) * (vel[b].y() > 0 ? 1 : vel[b].y() < 0 ? -1 : 0));
+      Vec2 Fd(F.x() - alpha * std::abs(F.x()) *
+                          (vel[b].x() > 0   ? 1
+                           : vel[b].x() < 0 ? -1
+                                            : 0),
+              F.y() - alpha * std::abs(F.y()) *
+                          (vel[b].y() > 0   ? 1
+                           : vel[b].y() < 0 ? -1
+                                            : 0));
       const double Md = M - alpha * std::abs(M) * (spin[b] > 0 ? 1 : spin[b] < 0 ? -1 : 0);
       const Vec2 v_new = vel[b] + dt * Fd / mass[b];
       const double w_new = spin[b] + dt * Md / inertia[b];

@@ -3,10 +3,10 @@
 // snapshots) for DemModel's public accessors.
 #pragma once
 
+#include <box2d/b2_collision.h>
+
 #include <cmath>
 #include <vector>
-
-#include <box2d/b2_collision.h>
 
 #include "dem/contact.hpp"
 #include "dem/dem.hpp"
@@ -18,12 +18,12 @@ namespace dem_detail {
 inline Vec2 rotate(const Vec2& v, double c, double s) { return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y()); }
 
 struct PointState {
-  int key = -1;          // feature id: reference edge, incident edge, flip, end of the incident edge
+  int key = -1;           // feature id: reference edge, incident edge, flip, end of the incident edge
   double fn = 0, fs = 0;  // N: normal (compression) and shear along perp(normal), on body B
-  double area = 0;       // m^2
-  double overlap = 0;    // m
+  double area = 0;        // m^2
+  double overlap = 0;     // m
   Vec2 point{0, 0};
-  Vec2 normal{0, 0};     // A -> B
+  Vec2 normal{0, 0};  // A -> B
 };
 
 struct Pair {
@@ -86,7 +86,7 @@ struct DemModel::Impl {
   // Diagnostics of the last cycle (the contact ones are summed from `pairs` on demand).
   double unbalanced = INFINITY, speed = INFINITY, ke = 0;
   double ke_per_weight = INFINITY;  // m: max over free blocks of KE_b / wref_b
-  double support_work = 0;  // J, done on the blocks by the moving supports since the start
+  double support_work = 0;          // J, done on the blocks by the moving supports since the start
 
   Impl(const Case& cs, const DemSettings& st) : origin(frame_origin(cs)), framed(shifted(cs, origin)), c(framed), s(st) {}
   static Vec2 frame_origin(const Case& cs);
@@ -95,9 +95,9 @@ struct DemModel::Impl {
   // Setup, in this order.
   void setup();
   void check_settings() const;
-  void build_blocks();     // blocks' arrays, convex pieces, dead loads
-  void scale_masses();     // the inertia of the free blocks (mass_scale)
-  void set_time_step();    // joint stiffnesses, the critical time step, dt
+  void build_blocks();                 // blocks' arrays, convex pieces, dead loads
+  void scale_masses();                 // the inertia of the free blocks (mass_scale)
+  void set_time_step();                // joint stiffnesses, the critical time step, dt
   void check_joint_stiffness() const;  // overlaps small against the blocks (or CaseError)
 
   void place_support(int b, double d, Vec2& x, double& th) const;

@@ -29,9 +29,7 @@ void DemModel::stop_free_blocks() {
   for (int b = 0; b < m.nb; ++b)
     if (!m.support[b]) m.vel[b] = Vec2::Zero(), m.spin[b] = 0;
 }
-DemBlockState DemModel::block(int b) const {
-  return {p_->pos[b] + p_->origin, p_->ang[b], p_->vel[b], p_->spin[b]};
-}
+DemBlockState DemModel::block(int b) const { return {p_->pos[b] + p_->origin, p_->ang[b], p_->vel[b], p_->spin[b]}; }
 double DemModel::kinetic_energy() const { return p_->ke; }
 double DemModel::support_work() const { return p_->support_work; }
 double DemModel::spring_energy() const {
@@ -192,8 +190,7 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
   };
   std::vector<Acc> acc(joints.size());
   const std::vector<double> gaps = corner_gaps(joints);
-  if (!gap_reference.empty() && gap_reference.size() != gaps.size())
-    throw std::logic_error("DemModel::record: gap reference of another joint list");
+  if (!gap_reference.empty() && gap_reference.size() != gaps.size()) throw std::logic_error("DemModel::record: gap reference of another joint list");
   auto joint_frame = [&](const Interface& J, Vec2& n, Vec2& t) {
     const double th = m.ang[J.i];
     n = rotate(J.normal, std::cos(th), std::sin(th));

@@ -47,8 +47,7 @@ double default_cycles_per_cycle(const DemSettings& s) { return s.timestep_factor
 void check_finite(const DemModel& m) {
   if (!std::isfinite(m.kinetic_energy()) || !std::isfinite(m.unbalanced_ratio())) {
     std::ostringstream msg;
-    msg << "dem: the integration produced a non-finite state at t = " << m.time() << " s (cycle " << m.cycles()
-        << "); refusing to record it";
+    msg << "dem: the integration produced a non-finite state at t = " << m.time() << " s (cycle " << m.cycles() << "); refusing to record it";
     throw std::runtime_error(msg.str());
   }
 }
@@ -124,9 +123,8 @@ namespace {
 // be: a block sliding down a slope at constant friction speeds up while its unbalanced force,
 // read each cycle, falls by 1-2%.)
 bool speeding_up_far_out(const DemModel& m, const Case& c, const std::vector<Vec2>& start, const std::vector<Vec2>& window_start,
-                    const std::vector<Vec2>& window_mid, const Limits& lim) {
-  return largest_move(m, c, start) > 0.1 * lim.collapse_drift &&
-         largest_move(m, c, window_mid) >= largest_distance(window_start, window_mid, c);
+                         const std::vector<Vec2>& window_mid, const Limits& lim) {
+  return largest_move(m, c, start) > 0.1 * lim.collapse_drift && largest_move(m, c, window_mid) >= largest_distance(window_start, window_mid, c);
 }
 }  // namespace
 
@@ -192,7 +190,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     }
     if (segment > 0 && (in_cap + 1) % (2 * segment) == 0) {
       const long long j = (in_cap + 1) / (2 * segment);  // the window is 2j segments long, its middle at segment j
-      check_energy(m, lim.energy_floor);  // a diverging integration also drifts: it is an error, never a collapse
+      check_energy(m, lim.energy_floor);                 // a diverging integration also drifts: it is an error, never a collapse
       if (j >= kFirstLook && j < kLookSegments / 2 && speeding_up_far_out(m, c, start, cap_start, looks[size_t(j)], lim)) {
         o.end = HoldEnd::collapse;
         break;
@@ -232,8 +230,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
   return o;
 }
 
-MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_height,
-                 double start_speed, const Limits& lim) {
+MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_height, double start_speed, const Limits& lim) {
   MoveOutcome o;
   const double dt = m.dt();
   const std::vector<Vec2> start = positions(m, c);

@@ -19,7 +19,7 @@ enum class HoldEnd {
   // hold()). No equilibrium within reach: at the capacity of a structure, the growth of the
   // collapse mode tends to zero, and this is how a hold just past it ends.
   creep,
-  undecided,    // the cap came first while the motion was still dying out (after kExtensions more caps)
+  undecided,  // the cap came first while the motion was still dying out (after kExtensions more caps)
 };
 const char* hold_end_name(HoldEnd e);
 
@@ -29,7 +29,7 @@ struct Limits {
   // m: the largest block displacement a move may carry, its support travel plus collapse_drift;
   // beyond it the structure collapsed during the move (a slow move can carry a whole toppling).
   double move_drift = INFINITY;
-  double energy_floor = 0;    // J, floor of the blow-up guard
+  double energy_floor = 0;  // J, floor of the blow-up guard
   // The move's largest acceleration of the path parameter, m/s^2 per m/m of travel (d's units
   // per s^2): the servo never speeds the supports up or brakes them faster (see move()).
   double move_accel = INFINITY;
@@ -48,7 +48,7 @@ struct HoldOutcome {
   // halves, m (0 for a hold that ended before its cap).
   double first_half = 0, second_half = 0;
   long long cycles = 0;
-  double time = 0;   // s of model time
+  double time = 0;  // s of model time
 };
 
 // Free blocks' centroids, and the largest distance a free block has moved from them, m.
@@ -78,7 +78,6 @@ struct MoveOutcome {
 // the default time-step factor: the rates are kept in model time at any other), starting
 // from `start_speed`, never below (d1 - d0) / hold_time; with move_time > 0, the constant-speed
 // move with half-cosine ramps.
-MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_height,
-                 double start_speed, const Limits& lim);
+MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, double d1, double ke_height, double start_speed, const Limits& lim);
 
 }  // namespace masonry::dem

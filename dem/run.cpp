@@ -8,9 +8,9 @@
 #include <stdexcept>
 
 #include "dem/dem.hpp"
+#include "dem/protocol.hpp"
 #include "model/io.hpp"
 #include "model/options.hpp"
-#include "dem/protocol.hpp"
 
 namespace masonry {
 
@@ -47,9 +47,9 @@ constexpr double kMoveAccel = 0.01;
 // One attempt to reach d1 from an equilibrium at d0: move, then hold.
 struct Attempt {
   HoldOutcome hold;
-  long long cycles = 0;       // move and hold
+  long long cycles = 0;  // move and hold
   long long move_cycles = 0;
-  double move_drift = 0;      // m, largest block displacement during the move
+  double move_drift = 0;  // m, largest block displacement during the move
   // What the structure still travelled during the hold over what it travelled during the move
   // (a diagnostic, per step. On the cathedral with rotation it is 1.3-2 at the default loading
   // and at half its speed, and stayed above 0.25 with supports 32 times slower, so it measures
@@ -69,7 +69,7 @@ struct Run {
   // The servo's target, m per m of d: the kinetic energy a block may carry during a move, over its
   // own weight (kinetic_ratio x support travel).
   double ke_height_per_d = 0;
-  double bracket = 0;   // m: the collapse bracket's width
+  double bracket = 0;  // m: the collapse bracket's width
   // Corner gaps of the settled initial configuration: hinges are measured from them.
   std::vector<double> settled_gaps;
   // The support speed at the end of the last move: the next move starts at a quarter of it, so
@@ -77,7 +77,7 @@ struct Run {
   double speed = 0;
   DemSnapshot last_eq;  // the last equilibrium, at d_eq
   double d_eq = 0;
-  int index = 0;        // of the next record (0: the settled initial configuration)
+  int index = 0;  // of the next record (0: the settled initial configuration)
   // Increments follow the grid k x step until a failure that was not confirmed moves the last
   // equilibrium off it; from there they are step long, up to max_steps x step.
   int k = 1;
@@ -203,8 +203,7 @@ bool settle(Run& u) {
     std::ostringstream msg;
     if (h0.end == HoldEnd::creep)
       msg << "the initial configuration neither settled nor ran away within the hold cap (" << u.s.hold_time
-          << " s): it creeps without slowing down (" << h0.second_half << " m over the last half cap after " << h0.first_half
-          << " m): no capacity";
+          << " s): it creeps without slowing down (" << h0.second_half << " m over the last half cap after " << h0.first_half << " m): no capacity";
     else if (!u.r.collapsed)
       msg << "the initial configuration neither settled nor ran away within the hold cap (" << u.s.hold_time
           << " s) and three more, its motion still dying out: no capacity; a longer dem.hold_time may settle it";
@@ -309,8 +308,7 @@ void close(Run& u, const Failure& f) {
   std::ostringstream msg;
   if (!any_collapse && limit_point) {
     msg << "limit point: no equilibrium at d = " << f.d << " m, which creeps without slowing down (" << f.attempt.hold.second_half
-        << " m over the last half cap after " << f.attempt.hold.first_half << " m), " << width
-        << " m past the last equilibrium";
+        << " m over the last half cap after " << f.attempt.hold.first_half << " m), " << width << " m past the last equilibrium";
     u.r.limit_point = true;
   } else if (!u.r.collapsed) {
     // The bracket stops narrowing at its tolerance, or where a trial could not be decided.

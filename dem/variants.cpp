@@ -73,8 +73,8 @@ std::vector<DemVariant> stiffness_variants(const DemSettings& base) {
     int times;
     bool stiffer;
   };
-  for (const Scale& k : {Scale{"softer-x10", 10, false}, Scale{"softer-x3", 3, false}, Scale{"stiffer-x3", 3, true},
-                         Scale{"stiffer-x10", 10, true}, Scale{"stiffer-x30", 30, true}}) {
+  for (const Scale& k : {Scale{"softer-x10", 10, false}, Scale{"softer-x3", 3, false}, Scale{"stiffer-x3", 3, true}, Scale{"stiffer-x10", 10, true},
+                         Scale{"stiffer-x30", 30, true}}) {
     DemVariant var{k.name, "joints x" + std::to_string(k.times) + (k.stiffer ? " stiffer" : " softer"), base};
     var.settings.stiffness_reduction = k.stiffer ? base.stiffness_reduction / k.times : base.stiffness_reduction * k.times;
     v.push_back(var);

@@ -1,7 +1,5 @@
 #include "model/case.hpp"
 
-#include "model/fields.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "model/fields.hpp"
 #include "model/interfaces.hpp"
 #include "model/io.hpp"
 #include "model/options.hpp"
@@ -25,10 +24,10 @@ namespace {
 // Ranges of the case's quantities (README, "Case files": ranges), wide enough for any masonry
 // structure and narrow enough that every derived quantity stays finite in double precision.
 // The options' ranges are their rows' (model/options.cpp).
-constexpr double kMaxLength = 1e5;          // m: depths
-constexpr double kMaxDensity = 1e5;         // kg/m^3 (the densest element, osmium, is 2.3e4)
-constexpr double kMaxForce = 1e12;          // N
-constexpr double kMaxRate = 1e3;            // m or rad per m of d
+constexpr double kMaxLength = 1e5;   // m: depths
+constexpr double kMaxDensity = 1e5;  // kg/m^3 (the densest element, osmium, is 2.3e4)
+constexpr double kMaxForce = 1e12;   // N
+constexpr double kMaxRate = 1e3;     // m or rad per m of d
 }  // namespace
 
 int Case::block_index(const std::string& id) const {
@@ -189,9 +188,9 @@ std::string no_joint_reason(const Case& c, size_t i, double tol) {
     for (const Vec2& p : vj) gap = std::min(gap, distance_to_boundary(p, vi));
     if (gap > tol) continue;
     std::ostringstream m;
-    m << "the block meets block '" << printable(c.blocks[j].id) << "' only at a point or over less than the contact tolerance ("
-      << tol << " m, prd.contact_tolerance), and a joint is two edges overlapping by more than that (the block is " << bi.extent().x()
-      << " by " << bi.extent().y() << " m)";
+    m << "the block meets block '" << printable(c.blocks[j].id) << "' only at a point or over less than the contact tolerance (" << tol
+      << " m, prd.contact_tolerance), and a joint is two edges overlapping by more than that (the block is " << bi.extent().x() << " by "
+      << bi.extent().y() << " m)";
     return m.str();
   }
   return "the block touches no other block";
@@ -211,22 +210,18 @@ Case parse_case(const std::string& text, const std::string& source) {
   c.name = r.string(doc, "case", "name", source);
   c.description = r.string(doc, "case", "description", "");
 
-  if (!doc.contains("blocks") || !doc["blocks"].is_array() || doc["blocks"].empty())
-    r.fail("case", "field 'blocks' must be a non-empty array");
+  if (!doc.contains("blocks") || !doc["blocks"].is_array() || doc["blocks"].empty()) r.fail("case", "field 'blocks' must be a non-empty array");
   std::set<std::string> ids;
   for (size_t i = 0; i < doc["blocks"].size(); ++i) {
     const json& jb = doc["blocks"][i];
     std::string where = "block #" + std::to_string(i);
-    if (jb.is_object() && jb.contains("id") && jb["id"].is_string())
-      where = "block '" + printable(jb["id"].get<std::string>()) + "'";
+    if (jb.is_object() && jb.contains("id") && jb["id"].is_string()) where = "block '" + printable(jb["id"].get<std::string>()) + "'";
     r.only(jb, where, {"id", "vertices", "depth", "density", "support"});
     Block b;
-    if (!jb.contains("id") || !jb["id"].is_string() || jb["id"].get<std::string>().empty())
-      r.fail(where, "field 'id' must be a non-empty string");
+    if (!jb.contains("id") || !jb["id"].is_string() || jb["id"].get<std::string>().empty()) r.fail(where, "field 'id' must be a non-empty string");
     b.id = jb["id"].get<std::string>();
     if (!ids.insert(b.id).second) r.fail(where, "field 'id': duplicate id");
-    if (!jb.contains("vertices") || !jb["vertices"].is_array())
-      r.fail(where, "field 'vertices' must be an array of [x, y]");
+    if (!jb.contains("vertices") || !jb["vertices"].is_array()) r.fail(where, "field 'vertices' must be an array of [x, y]");
     for (const json& v : jb["vertices"]) {
       b.vertices.push_back(r.point(v, where, "vertices"));
       r.range(b.vertices.back().cwiseAbs().maxCoeff(), 0, kMaxCoordinate, where, "vertices", "m (|x|, |y|)");

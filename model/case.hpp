@@ -94,9 +94,9 @@ const char* hold_damping_name(HoldDamping h);
 struct DemOptions {
   double young_modulus = 3.0e10;  // Pa
   double poisson = 0.2;
-  double friction_angle = 35.0;   // degrees; 90 means no slip limit
-  std::optional<double> kn;       // Pa/m; default E / h_block, h_block = sqrt(mean free block area)
-  std::optional<double> ks;       // Pa/m; default G / h_block, G = E / (2 (1 + nu))
+  double friction_angle = 35.0;      // degrees; 90 means no slip limit
+  std::optional<double> kn;          // Pa/m; default E / h_block, h_block = sqrt(mean free block area)
+  std::optional<double> ks;          // Pa/m; default G / h_block, G = E / (2 (1 + nu))
   double stiffness_reduction = 1.0;  // kn and ks are divided by this (the paper used 10)
   double damping = 0.8;              // local non-viscous damping coefficient alpha in [0, 1)
   // dt = timestep_factor * dt_crit, dt_crit = 2 / omega_bound (see DemModel::critical_dt);

@@ -117,12 +117,10 @@ struct FieldReader {
   // The physically meaningful range of a quantity (README, "Ranges"): outside it the solvers'
   // arithmetic (GLPK's scaled LPs, the DEM's time step and energies) overflows or loses every
   // digit, so the input is refused before the first step.
-  void range(double x, double lo, double hi, const std::string& where, const std::string& field, const char* unit,
-             bool lo_open = false) const {
+  void range(double x, double lo, double hi, const std::string& where, const std::string& field, const char* unit, bool lo_open = false) const {
     if ((lo_open ? x > lo : x >= lo) && x <= hi) return;
     std::ostringstream m;
-    m << "field '" << field << "' = " << x << " is outside " << (lo_open ? "(" : "[") << lo << ", " << hi << "]" << (*unit ? " " : "")
-      << unit;
+    m << "field '" << field << "' = " << x << " is outside " << (lo_open ? "(" : "[") << lo << ", " << hi << "]" << (*unit ? " " : "") << unit;
     fail(where, m.str());
   }
 

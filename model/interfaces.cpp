@@ -27,8 +27,7 @@ double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
 
 double distance_to_boundary(const Vec2& p, const std::vector<Vec2>& poly) {
   double best = INFINITY;
-  for (size_t i = 0, n = poly.size(); i < n; ++i)
-    best = std::min(best, distance_to_segment(p, poly[i], poly[(i + 1) % n]));
+  for (size_t i = 0, n = poly.size(); i < n; ++i) best = std::min(best, distance_to_segment(p, poly[i], poly[(i + 1) % n]));
   return best;
 }
 
@@ -36,8 +35,8 @@ namespace {
 
 struct Edge {
   int block;
-  Vec2 p, q;  // counter-clockwise order along the block
-  double lo, hi;  // extent along the sweep axis
+  Vec2 p, q;        // counter-clockwise order along the block
+  double lo, hi;    // extent along the sweep axis
   double lo2, hi2;  // extent along the other axis
 };
 
@@ -48,7 +47,7 @@ bool edge_pair(const Edge& e, const Edge& f, double tol, Interface& out) {
   const double le = de.norm();
   if (le <= tol) return false;
   const Vec2 u = de / le;
-  const Vec2 n(u.y(), -u.x());  // outward for a counter-clockwise block
+  const Vec2 n(u.y(), -u.x());              // outward for a counter-clockwise block
   if (u.dot(f.q - f.p) >= 0) return false;  // not opposite
   if (std::abs((f.p - e.p).dot(n)) > tol || std::abs((f.q - e.p).dot(n)) > tol) return false;
   const double s0 = (f.p - e.p).dot(u), s1 = (f.q - e.p).dot(u);
@@ -81,13 +80,12 @@ std::vector<Interface> detect_interfaces(const Case& c, double tol) {
     const auto& vs = c.blocks[bi].vertices;
     for (size_t k = 0; k < vs.size(); ++k) {
       const Vec2 &p = vs[k], &q = vs[(k + 1) % vs.size()];
-      edges.push_back({static_cast<int>(bi), p, q, std::min(p[ax], q[ax]) - tol, std::max(p[ax], q[ax]) + tol,
-                       std::min(p[ay], q[ay]) - tol, std::max(p[ay], q[ay]) + tol});
+      edges.push_back({static_cast<int>(bi), p, q, std::min(p[ax], q[ax]) - tol, std::max(p[ax], q[ax]) + tol, std::min(p[ay], q[ay]) - tol,
+                       std::max(p[ay], q[ay]) + tol});
     }
   }
-  std::sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) {
-    return a.lo < b.lo || (a.lo == b.lo && (a.block < b.block || (a.block == b.block && a.hi < b.hi)));
-  });
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& a, const Edge& b) { return a.lo < b.lo || (a.lo == b.lo && (a.block < b.block || (a.block == b.block && a.hi < b.hi))); });
 
   std::vector<Interface> raw;
   for (size_t k = 0; k < edges.size(); ++k) {
@@ -117,8 +115,7 @@ std::vector<Interface> detect_interfaces(const Case& c, double tol) {
       if (!out.empty()) {
         Interface& g = out.back();
         const Vec2 t(-g.normal.y(), g.normal.x());
-        const bool same_line = g.i == f.i && g.j == f.j && g.normal.dot(f.normal) > 1 - 1e-9 &&
-                               std::abs((f.a - g.a).dot(g.normal)) <= tol;
+        const bool same_line = g.i == f.i && g.j == f.j && g.normal.dot(f.normal) > 1 - 1e-9 && std::abs((f.a - g.a).dot(g.normal)) <= tol;
         if (same_line && (f.a - g.b).dot(t) <= tol) {
           if ((f.b - g.b).dot(t) > 0) g.b = f.b;
           continue;

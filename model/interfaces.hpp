@@ -10,7 +10,7 @@
 namespace masonry {
 
 struct Interface {
-  int i = -1, j = -1;  // blocks, i < j; the normal points from i into j
+  int i = -1, j = -1;     // blocks, i < j; the normal points from i into j
   Vec2 a{0, 0}, b{0, 0};  // endpoints A and B (initial configuration), B - A along the tangent
   Vec2 normal{0, 0};      // unit, out of block i
   double length() const { return (b - a).norm(); }

@@ -260,8 +260,10 @@ std::string short_num(double x) {
 // A bound as the refusals write it: as a stream writes a double (1e+05), a count in full.
 std::string bound_text(double x, bool integer) {
   std::ostringstream o;
-  if (integer) o << static_cast<long long>(x);
-  else o << x;
+  if (integer)
+    o << static_cast<long long>(x);
+  else
+    o << x;
   return o.str();
 }
 
@@ -281,11 +283,16 @@ OptionType type_of(const Option<S>& o) {
   return std::visit(
       [](auto p) {
         using T = std::remove_cvref_t<decltype(std::declval<S>().*p)>;
-        if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>>) return OptionType::number;
-        else if constexpr (std::is_same_v<T, int>) return OptionType::integer;
-        else if constexpr (std::is_same_v<T, bool>) return OptionType::boolean;
-        else if constexpr (std::is_same_v<T, HoldDamping>) return OptionType::word;
-        else return OptionType::words;
+        if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>>)
+          return OptionType::number;
+        else if constexpr (std::is_same_v<T, int>)
+          return OptionType::integer;
+        else if constexpr (std::is_same_v<T, bool>)
+          return OptionType::boolean;
+        else if constexpr (std::is_same_v<T, HoldDamping>)
+          return OptionType::word;
+        else
+          return OptionType::words;
       },
       o.member);
 }
@@ -364,7 +371,8 @@ void check_one(const Reader& r, const std::string& where, const Option<S>& o, co
   std::visit(
       [&](auto p) {
         using T = std::remove_cvref_t<decltype(s.*p)>;
-        if constexpr (std::is_same_v<T, double>) check_range(r, where, o, s.*p);
+        if constexpr (std::is_same_v<T, double>)
+          check_range(r, where, o, s.*p);
         else if constexpr (std::is_same_v<T, std::optional<double>>) {
           if (s.*p) check_range(r, where, o, *(s.*p));
         }
@@ -378,9 +386,12 @@ bool shown(const Option<S>& o, const S& s, Shown rule) {
   return std::visit(
       [&](auto p) {
         using T = std::remove_cvref_t<decltype(s.*p)>;
-        if constexpr (std::is_same_v<T, std::optional<double>>) return (s.*p).has_value();
-        else if constexpr (std::is_same_v<T, std::vector<std::string>>) return rule == Shown::always || !(s.*p).empty();
-        else return rule == Shown::always || !(s.*p == defaults<S>().*p);
+        if constexpr (std::is_same_v<T, std::optional<double>>)
+          return (s.*p).has_value();
+        else if constexpr (std::is_same_v<T, std::vector<std::string>>)
+          return rule == Shown::always || !(s.*p).empty();
+        else
+          return rule == Shown::always || !(s.*p == defaults<S>().*p);
       },
       o.member);
 }
@@ -390,9 +401,12 @@ void put(Json& obj, const Option<S>& o, const S& s) {
   std::visit(
       [&](auto p) {
         using T = std::remove_cvref_t<decltype(s.*p)>;
-        if constexpr (std::is_same_v<T, std::optional<double>>) obj[o.name] = *(s.*p);
-        else if constexpr (std::is_same_v<T, HoldDamping>) obj[o.name] = o.words[static_cast<size_t>(s.*p)];
-        else obj[o.name] = s.*p;
+        if constexpr (std::is_same_v<T, std::optional<double>>)
+          obj[o.name] = *(s.*p);
+        else if constexpr (std::is_same_v<T, HoldDamping>)
+          obj[o.name] = o.words[static_cast<size_t>(s.*p)];
+        else
+          obj[o.name] = s.*p;
       },
       o.member);
 }
@@ -403,12 +417,18 @@ std::string default_text(const Option<S>& o) {
   return std::visit(
       [&](auto p) -> std::string {
         using T = std::remove_cvref_t<decltype(s.*p)>;
-        if constexpr (std::is_same_v<T, double>) return short_num(s.*p);
-        else if constexpr (std::is_same_v<T, int>) return std::to_string(s.*p);
-        else if constexpr (std::is_same_v<T, bool>) return s.*p ? "true" : "false";
-        else if constexpr (std::is_same_v<T, HoldDamping>) return o.words[static_cast<size_t>(s.*p)];
-        else if constexpr (std::is_same_v<T, std::optional<double>>) return s.*p ? short_num(*(s.*p)) : std::string("absent: ") + o.absent;
-        else return (s.*p).empty() ? "none" : "";
+        if constexpr (std::is_same_v<T, double>)
+          return short_num(s.*p);
+        else if constexpr (std::is_same_v<T, int>)
+          return std::to_string(s.*p);
+        else if constexpr (std::is_same_v<T, bool>)
+          return s.*p ? "true" : "false";
+        else if constexpr (std::is_same_v<T, HoldDamping>)
+          return o.words[static_cast<size_t>(s.*p)];
+        else if constexpr (std::is_same_v<T, std::optional<double>>)
+          return s.*p ? short_num(*(s.*p)) : std::string("absent: ") + o.absent;
+        else
+          return (s.*p).empty() ? "none" : "";
       },
       o.member);
 }
@@ -418,9 +438,7 @@ std::string range_text(const Option<S>& o) {
   std::string t;
   switch (type_of(o)) {
     case OptionType::number:
-    case OptionType::integer:
-      t = interval_text(o.range, false, [](double x, bool) { return short_num(x); });
-      break;
+    case OptionType::integer: t = interval_text(o.range, false, [](double x, bool) { return short_num(x); }); break;
     case OptionType::boolean: return "true, false";
     case OptionType::word:
       for (size_t k = 0; k < o.words.size(); ++k) t += std::string(k ? ", " : "") + o.words[k];
@@ -535,8 +553,8 @@ void check_scene_options(const S& s, double L, const std::string& source) {
     const double x = s.**p, lo = o.scene.lo * L, hi = o.scene.hi * L;
     if (!(x > 0) || (x >= lo && x <= hi)) continue;
     std::ostringstream m;
-    m << "field '" << o.name << "' = " << x << " " << o.unit << " is outside [" << lo << ", " << hi << "] " << o.unit << " for a scene of "
-      << L << " m (" << short_num(o.scene.lo) << " to " << short_num(o.scene.hi) << " times the scene size"
+    m << "field '" << o.name << "' = " << x << " " << o.unit << " is outside [" << lo << ", " << hi << "] " << o.unit << " for a scene of " << L
+      << " m (" << short_num(o.scene.lo) << " to " << short_num(o.scene.hi) << " times the scene size"
       << (*o.scene.why ? std::string(": ") + o.scene.why : std::string()) << ")";
     r.fail(where_of(sec), m.str());
   }
@@ -556,11 +574,11 @@ ordered_json echo_options(const S& s) {
   return obj;
 }
 
-#define MASONRY_OPTION_SECTION(S)                                                                                 \
-  template void read_options<S>(const json&, S&, const std::string&, std::initializer_list<const char*>);        \
-  template void check_options<S>(const S&, const std::string&, bool);                                            \
-  template void check_scene_options<S>(const S&, double, const std::string&);                                    \
-  template void write_options<S>(ordered_json&, const S&);                                                       \
+#define MASONRY_OPTION_SECTION(S)                                                                         \
+  template void read_options<S>(const json&, S&, const std::string&, std::initializer_list<const char*>); \
+  template void check_options<S>(const S&, const std::string&, bool);                                     \
+  template void check_scene_options<S>(const S&, double, const std::string&);                             \
+  template void write_options<S>(ordered_json&, const S&);                                                \
   template ordered_json echo_options<S>(const S&);
 MASONRY_OPTION_SECTION(Case)
 MASONRY_OPTION_SECTION(Motion)
@@ -596,9 +614,8 @@ std::string options_markdown() {
       for (size_t k = 0; k < i.commands.size(); ++k) flag += std::string(k ? ", " : "") + option_command_name(i.commands[k]);
       flag += ")";
     }
-    md << "| `" << i.key << "` | " << option_type_name(i.type) << " | " << (i.default_text.empty() ? "-" : i.default_text) << " | "
-       << i.range_text << (*i.note ? std::string(" (") + i.note + ")" : "") << " | " << (*i.unit ? i.unit : "-") << " | " << flag << " | "
-       << i.help << " |\n";
+    md << "| `" << i.key << "` | " << option_type_name(i.type) << " | " << (i.default_text.empty() ? "-" : i.default_text) << " | " << i.range_text
+       << (*i.note ? std::string(" (") + i.note + ")" : "") << " | " << (*i.unit ? i.unit : "-") << " | " << flag << " | " << i.help << " |\n";
   }
   return md.str();
 }

@@ -44,21 +44,20 @@ const char* option_type_name(OptionType t);  // "number", "integer", "true/false
 // One option of section S. Rows are written with designated initialisers (options.cpp).
 template <class S>
 struct Option {
-  using Member = std::variant<double S::*, int S::*, bool S::*, std::optional<double> S::*, std::vector<std::string> S::*,
-                              HoldDamping S::*>;
+  using Member = std::variant<double S::*, int S::*, bool S::*, std::optional<double> S::*, std::vector<std::string> S::*, HoldDamping S::*>;
   const char* name = "";  // the field in its section of the case file: "kinetic_ratio"
   Member member{};
-  const char* unit = "";   // SI; "" for a ratio, a count or a switch
-  Interval range{};        // numbers and integers
-  const char* note = "";   // said with the range, in a refusal and in the README: what 0 or the unit means
-  const char* absent = ""; // an optional number: what its absence gives
+  const char* unit = "";    // SI; "" for a ratio, a count or a switch
+  Interval range{};         // numbers and integers
+  const char* note = "";    // said with the range, in a refusal and in the README: what 0 or the unit means
+  const char* absent = "";  // an optional number: what its absence gives
   SceneRange scene{};
   // A word: its values (the enum's, in order); a list of words: what each must be, and the check.
   std::span<const char* const> words{};
   bool (*word_ok)(const std::string&) = nullptr;
-  const char* help = "";   // one line: what the option does
-  const char* flag = "";   // "--kinetic-ratio"; "": none
-  bool on_compare = false;  // the flag is on `compare` as well as on its method's command
+  const char* help = "";             // one line: what the option does
+  const char* flag = "";             // "--kinetic-ratio"; "": none
+  bool on_compare = false;           // the flag is on `compare` as well as on its method's command
   Shown in_case = Shown::always;     // case_to_json
   Shown in_results = Shown::always;  // results.json's settings
 };
@@ -88,7 +87,7 @@ const char* option_command_name(OptionCommand c);  // "prd", "dem", "compare"
 
 // An option of any section, as the flags and the README show it.
 struct OptionInfo {
-  std::string key;  // "dem.kinetic_ratio", "gravity"
+  std::string key;      // "dem.kinetic_ratio", "gravity"
   std::string section;  // "dem", "" for the case's own fields
   OptionType type = OptionType::number;
   std::string default_text;  // "1e-3", "absent: E / h_block, ...", "local"
@@ -108,20 +107,20 @@ std::string options_markdown();
 // ("dem.kinetic_ratio"): code that names an option in a key or a message uses these, so the key
 // is written once, in its row. Throws std::logic_error for a member no row holds.
 template <class S, class T>
-const Option<S>& option_of(T S::* member) {
+const Option<S>& option_of(T S::*member) {
   for (const Option<S>& o : options<S>().rows)
     if (const auto* p = std::get_if<T S::*>(&o.member); p && *p == member) return o;
   throw std::logic_error("masonry: no option row holds this member");
 }
 template <class S, class T>
-std::string option_key(T S::* member) {
+std::string option_key(T S::*member) {
   const char* section = options<S>().name;
   return (*section ? std::string(section) + "." : std::string()) + option_of(member).name;
 }
 // Sets one option's field in a results.json settings object (a value the run derived, such as the
 // DEM's kn where the case left it absent).
 template <class S, class T, class V>
-void set_setting(nlohmann::ordered_json& settings, T S::* member, const V& value) {
+void set_setting(nlohmann::ordered_json& settings, T S::*member, const V& value) {
   settings[option_of(member).name] = value;
 }
 

@@ -1,7 +1,7 @@
 #include "model/results.hpp"
 
-#include <cmath>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -18,7 +18,10 @@ using ojson = nlohmann::ordered_json;
 ojson json_number(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 
 ojson prd_on_run_json(const PrdOnRun& p) {
-  return {{"from_d", p.from_d}, {"tolerance", p.tolerance}, {"kept", json_number(p.kept)}, {"taken_back", json_number(p.taken_back)},
+  return {{"from_d", p.from_d},
+          {"tolerance", p.tolerance},
+          {"kept", json_number(p.kept)},
+          {"taken_back", json_number(p.taken_back)},
           {"own", json_number(p.own)}};
 }
 
@@ -90,7 +93,8 @@ void write_hold(const DemHold& h, ojson& js) {
   js["drift"] = json_number(h.drift);
   js["contact_points"] = h.contact_points;
   js["max_overlap"] = json_number(h.max_overlap);
-  if (h.cap_travel) js["cap_travel"] = {{"first_half", json_number(h.cap_travel->first_half)}, {"second_half", json_number(h.cap_travel->second_half)}};
+  if (h.cap_travel)
+    js["cap_travel"] = {{"first_half", json_number(h.cap_travel->first_half)}, {"second_half", json_number(h.cap_travel->second_half)}};
 }
 
 ojson event_json(const Event& e, const RunResult& r, const Case& c) {
@@ -173,10 +177,7 @@ ojson to_json(const RunResult& r, const Case& c) {
   ojson joints = ojson::array();
   for (size_t k = 0; k < r.joints.size(); ++k) {
     const JointInfo& f = r.joints[k];
-    joints.push_back({{"id", k},
-                      {"blocks", {c.blocks[f.i].id, c.blocks[f.j].id}},
-                      {"a", vec(f.a)},
-                      {"b", vec(f.b)}});
+    joints.push_back({{"id", k}, {"blocks", {c.blocks[f.i].id, c.blocks[f.j].id}}, {"a", vec(f.a)}, {"b", vec(f.b)}});
   }
   j["joints"] = joints;
   ojson steps = ojson::array();
@@ -195,7 +196,8 @@ ojson to_json(const RunResult& r, const Case& c) {
     js["poses"] = poses_json(s.poses);
     ojson fo = ojson::array();
     for (const JointForce& f : s.forces)
-      fo.push_back({{"joint", f.joint}, {"normal", json_number(f.normal)}, {"shear", json_number(f.shear)}, {"point", vec(f.point)}, {"n", vec(f.n)}});
+      fo.push_back(
+          {{"joint", f.joint}, {"normal", json_number(f.normal)}, {"shear", json_number(f.shear)}, {"point", vec(f.point)}, {"n", vec(f.n)}});
     js["forces"] = fo;
     if (s.settled) js["settled"] = *s.settled;
     if (s.hold) write_hold(*s.hold, js);
@@ -266,8 +268,7 @@ std::string steps_csv(const RunResult& r) {
   o.precision(12);
   o << "step,d_m,energy_J,open_corners,cracked_joints";
   if (!r.steps.empty())
-    for (const Reaction& x : r.steps.front().reactions)
-      o << "," << csv_field("Fx_" + x.support + "_N") << "," << csv_field("Fy_" + x.support + "_N");
+    for (const Reaction& x : r.steps.front().reactions) o << "," << csv_field("Fx_" + x.support + "_N") << "," << csv_field("Fy_" + x.support + "_N");
   o << "\n";
   for (const StepRecord& s : r.steps) {
     o << s.index << "," << s.d << "," << s.energy << "," << s.open_corners.size() << "," << s.cracked.size();

@@ -22,17 +22,17 @@ struct Reaction {
 };
 
 struct OpenCorner {
-  int joint = -1;     // index into RunResult::joints
-  int corner = 0;     // 0 = A, 1 = B
-  double gap = 0.0;   // m, normal opening at the end of the step
+  int joint = -1;    // index into RunResult::joints
+  int corner = 0;    // 0 = A, 1 = B
+  double gap = 0.0;  // m, normal opening at the end of the step
 };
 
 struct JointForce {
   int joint = -1;
-  double normal = 0.0;      // N, compressive resultant (>= 0)
-  double shear = 0.0;       // N, along the joint tangent
-  Vec2 point{0, 0};         // application point of the resultant, current configuration
-  Vec2 n{0, 0};             // unit normal of the joint (out of block i), current configuration
+  double normal = 0.0;  // N, compressive resultant (>= 0)
+  double shear = 0.0;   // N, along the joint tangent
+  Vec2 point{0, 0};     // application point of the resultant, current configuration
+  Vec2 n{0, 0};         // unit normal of the joint (out of block i), current configuration
 };
 
 struct Pose {
@@ -43,7 +43,7 @@ struct Pose {
 // kinematics forbid sliding, so its forces need not respect a friction limit; this says how much
 // friction they need.
 struct SlidingCheck {
-  double demand_angle = 0.0;    // atan(|T|/N) of the step's dual joint forces, largest over the joints
+  double demand_angle = 0.0;  // atan(|T|/N) of the step's dual joint forces, largest over the joints
   int demand_joint = -1;
   double required_angle = 0.0;  // least friction angle for which some admissible force state avoids sliding
   int required_joint = -1;
@@ -51,15 +51,15 @@ struct SlidingCheck {
 
 // The sliding check over a whole run (prd's sliding_summary): the most demanding steps.
 struct SlidingSummary {
-  bool any = false;                     // some step carries the check (else only lp_solves)
-  double required_friction_angle = 0;   // deg: largest required_angle over the steps
-  double d = 0;                         // m, where
+  bool any = false;                    // some step carries the check (else only lp_solves)
+  double required_friction_angle = 0;  // deg: largest required_angle over the steps
+  double d = 0;                        // m, where
   int step = 0;
-  std::string joint;                    // "i/j" block ids
-  double max_demand_angle = 0;          // deg: largest demand_angle over the steps
-  double demand_d = 0;                  // m
+  std::string joint;            // "i/j" block ids
+  double max_demand_angle = 0;  // deg: largest demand_angle over the steps
+  double demand_d = 0;          // m
   std::string demand_joint;
-  long long lp_solves = 0;              // the check's feasibility LPs
+  long long lp_solves = 0;  // the check's feasibility LPs
 };
 
 // A joint corner: index into RunResult::joints and the corner (0 = A, 1 = B).
@@ -99,30 +99,30 @@ struct DemHold {
   double max_speed = 0.0;         // m/s
   double drift = 0.0;             // m, largest block displacement since the hold began
   long long contact_points = 0;
-  double max_overlap = 0.0;       // m
+  double max_overlap = 0.0;             // m
   std::optional<CapTravel> cap_travel;  // a hold that ended "creep" or "undecided"
 };
 
 struct StepRecord {
-  int index = 0;     // 0 = initial configuration
-  double d = 0.0;    // path parameter after this step, m
+  int index = 0;        // 0 = initial configuration
+  double d = 0.0;       // path parameter after this step, m
   double energy = 0.0;  // total potential energy of the loads relative to the start, J (NaN: not given)
   std::vector<OpenCorner> open_corners;
-  std::vector<int> cracked;          // joints with at least one open corner
-  std::vector<Reaction> reactions;   // one per support block
-  std::vector<Pose> poses;           // one per block (supports included), in case order
-  std::vector<JointForce> forces;    // one per joint carrying force
+  std::vector<int> cracked;         // joints with at least one open corner
+  std::vector<Reaction> reactions;  // one per support block
+  std::vector<Pose> poses;          // one per block (supports included), in case order
+  std::vector<JointForce> forces;   // one per joint carrying force
   // Whether the record is an equilibrium; absent: it is. The DEM writes it for every record
   // (false: the failed state that closes a run).
   std::optional<bool> settled;
-  std::optional<DemHold> hold;          // the DEM
-  std::optional<LpOptima> lp;           // PRD
-  std::vector<HeldCorner> held_corners; // PRD with corners held closed
-  std::optional<SlidingCheck> sliding;  // PRD with the sliding check
+  std::optional<DemHold> hold;           // the DEM
+  std::optional<LpOptima> lp;            // PRD
+  std::vector<HeldCorner> held_corners;  // PRD with corners held closed
+  std::optional<SlidingCheck> sliding;   // PRD with the sliding check
 };
 
 struct JointInfo {
-  int i = -1, j = -1;  // block indices
+  int i = -1, j = -1;     // block indices
   Vec2 a{0, 0}, b{0, 0};  // endpoints in the initial configuration
 };
 
@@ -160,8 +160,8 @@ enum class EventKind { open, close, collapse };
 const char* event_kind_name(EventKind k);
 struct Event {
   EventKind kind = EventKind::open;
-  double d = 0.0;       // m
-  double within = 0.0;  // m: the event lies in (d - within, d]
+  double d = 0.0;                  // m
+  double within = 0.0;             // m: the event lies in (d - within, d]
   std::vector<CornerRef> corners;  // written as "joints", with the joint's blocks
 };
 
@@ -180,10 +180,10 @@ struct Collapse {
 // The DEM's collapse bracket (dem/README.md): the last equilibrium, the failed increment's end,
 // and every trial that narrowed it.
 struct BracketTrial {
-  double d = 0.0;         // m
-  std::string end;        // how its hold ended: "equilibrium", "collapse", "creep" or "undecided"
+  double d = 0.0;   // m
+  std::string end;  // how its hold ended: "equilibrium", "collapse", "creep" or "undecided"
   long long cycles = 0;
-  bool confirm = false;   // the confirming hold of DemSettings::confirm_collapse
+  bool confirm = false;  // the confirming hold of DemSettings::confirm_collapse
 };
 struct CollapseBracket {
   double equilibrium = 0.0, failed = 0.0, width = 0.0;  // m
@@ -195,24 +195,24 @@ struct UnconfirmedFailure {
 };
 
 struct RunResult {
-  std::string method;           // method_name(Method), or an outside solver's own name (known_method)
+  std::string method;  // method_name(Method), or an outside solver's own name (known_method)
   std::string case_name;
-  std::string version;          // the code that made it: masonry's version_text(), or the solver's
-  double capacity = 0.0;        // m, the last stable d
-  int stable_steps = 0;         // index of the last equilibrium record at or before the capacity
+  std::string version;    // the code that made it: masonry's version_text(), or the solver's
+  double capacity = 0.0;  // m, the last stable d
+  int stable_steps = 0;   // index of the last equilibrium record at or before the capacity
   bool collapsed = false;
   RunStatus status = RunStatus::running;
   std::string message;
-  double total_weight = 0.0;    // N, masonry::total_weight(case): what the supports carry vertically
+  double total_weight = 0.0;  // N, masonry::total_weight(case): what the supports carry vertically
   std::vector<JointInfo> joints;
   std::vector<StepRecord> steps;
   Timing timing;
   nlohmann::ordered_json settings = nlohmann::ordered_json::object();  // the method's settings as run, free-form
-  std::optional<SlidingSummary> sliding;  // PRD with the sliding check
-  std::optional<std::vector<Event>> events;  // PRD
-  std::optional<Collapse> collapse;          // PRD, a run that collapsed
-  std::optional<double> wall_s;              // DEM: wall time of the run without I/O, s
-  std::optional<CollapseBracket> collapse_bracket;   // DEM, a located failure
+  std::optional<SlidingSummary> sliding;                               // PRD with the sliding check
+  std::optional<std::vector<Event>> events;                            // PRD
+  std::optional<Collapse> collapse;                                    // PRD, a run that collapsed
+  std::optional<double> wall_s;                                        // DEM: wall time of the run without I/O, s
+  std::optional<CollapseBracket> collapse_bracket;                     // DEM, a located failure
   // DEM: the collapse was located as a limit point (no equilibrium at the bracket's upper end,
   // which creeps without slowing down; no runaway seen). Written only when true.
   bool limit_point = false;

@@ -42,9 +42,7 @@ struct Reader : FieldReader<std::runtime_error, ojson> {
     return *it;
   }
   // A number, or null for one the writer could not give (JSON has no NaN): NaN.
-  double maybe(const ojson& v, const std::string& where, const std::string& field) const {
-    return v.is_null() ? kNaN : number(v, where, field);
-  }
+  double maybe(const ojson& v, const std::string& where, const std::string& field) const { return v.is_null() ? kNaN : number(v, where, field); }
   double maybe(const ojson& o, const std::string& where, const char* field, double dflt) const {
     auto it = o.find(field);
     return it == o.end() ? dflt : maybe(*it, where, field);
@@ -112,8 +110,7 @@ struct Reader : FieldReader<std::runtime_error, ojson> {
 
 void read_blocks(const Reader& in, const ojson& blocks) {
   const std::string w = "blocks";
-  if (blocks.size() != in.c.blocks.size())
-    in.fail(w, std::to_string(blocks.size()) + " blocks, the case has " + std::to_string(in.c.blocks.size()));
+  if (blocks.size() != in.c.blocks.size()) in.fail(w, std::to_string(blocks.size()) + " blocks, the case has " + std::to_string(in.c.blocks.size()));
   for (size_t b = 0; b < blocks.size(); ++b) {
     const std::string wb = item(w, b);
     in.only(blocks[b], wb, {"id", "support"});
@@ -146,9 +143,10 @@ std::vector<JointInfo> read_joints(const Reader& in, const ojson& joints) {
 }
 
 StepRecord read_step(const Reader& in, const ojson& js, const std::string& w) {
-  in.only(js, w, {"step", "d", "energy", "open_corners", "cracked", "reactions", "poses", "forces", "settled", "hold_end", "bracket",
-                  "cycles", "move_cycles", "lag", "hold_time", "unbalanced_ratio", "max_speed", "drift", "contact_points",
-                  "max_overlap", "cap_travel", "lp_primal", "lp_dual", "held_corners", "sliding"});
+  in.only(js, w, {"step",      "d",        "energy",         "open_corners", "cracked",     "reactions", "poses",     "forces",
+                  "settled",   "hold_end", "bracket",        "cycles",       "move_cycles", "lag",       "hold_time", "unbalanced_ratio",
+                  "max_speed", "drift",    "contact_points", "max_overlap",  "cap_travel",  "lp_primal", "lp_dual",   "held_corners",
+                  "sliding"});
   StepRecord s;
   const long long index = in.integer(in.need(js, w, "step"), w, "step");
   if (index < 0 || index > std::numeric_limits<int>::max()) in.fail(w, "field 'step' must be a step index, 0 or more");
@@ -164,7 +162,8 @@ StepRecord read_step(const Reader& in, const ojson& js, const std::string& w) {
   const ojson& cracked = in.array(js, w, "cracked");
   for (size_t k = 0; k < cracked.size(); ++k) {
     const long long j = in.integer(cracked[k], w, "cracked");
-    if (j < 0 || j >= in.joints) in.fail(w, "field 'cracked': joint " + std::to_string(j) + " is not one of the file's " + std::to_string(in.joints) + " joints");
+    if (j < 0 || j >= in.joints)
+      in.fail(w, "field 'cracked': joint " + std::to_string(j) + " is not one of the file's " + std::to_string(in.joints) + " joints");
     s.cracked.push_back(static_cast<int>(j));
   }
   const ojson& re = in.array(js, w, "reactions");
@@ -275,10 +274,14 @@ void read_prd_fields(const Reader& in, const ojson& j, RunResult& r) {
       in.only(ev[k], w, {"kind", "d", "within", "joints"});
       Event e;
       const std::string kind = in.text(in.need(ev[k], w, "kind"), w, "kind");
-      if (kind == "open") e.kind = EventKind::open;
-      else if (kind == "close") e.kind = EventKind::close;
-      else if (kind == "collapse") e.kind = EventKind::collapse;
-      else in.fail(w, "field 'kind' must be open, close or collapse");
+      if (kind == "open")
+        e.kind = EventKind::open;
+      else if (kind == "close")
+        e.kind = EventKind::close;
+      else if (kind == "collapse")
+        e.kind = EventKind::collapse;
+      else
+        in.fail(w, "field 'kind' must be open, close or collapse");
       e.d = in.maybe(in.need(ev[k], w, "d"), w, "d");
       e.within = in.maybe(ev[k], w, "within", kNaN);
       e.corners = read_corners(in, in.array(ev[k], w, "joints"), member(w, "joints"), &r);
@@ -350,9 +353,9 @@ void check_consistency(const Reader& in, const RunResult& r, bool has_stable_ste
   for (size_t k = 1; k < r.steps.size(); ++k) {
     const StepRecord &a = r.steps[k - 1], &b = r.steps[k];
     if (b.index != a.index + 1)
-      in.fail(item("steps", k), "field 'step' = " + std::to_string(b.index) + " after " + std::to_string(a.index) + ": step indices must be consecutive");
-    if (b.d < a.d)
-      in.fail(item("steps", k), "field 'd' = " + num(b.d) + " m is less than the step before (" + num(a.d) + " m): d never decreases");
+      in.fail(item("steps", k),
+              "field 'step' = " + std::to_string(b.index) + " after " + std::to_string(a.index) + ": step indices must be consecutive");
+    if (b.d < a.d) in.fail(item("steps", k), "field 'd' = " + num(b.d) + " m is less than the step before (" + num(a.d) + " m): d never decreases");
   }
   const double last = r.steps.empty() ? 0.0 : r.steps.back().d;
   const double eps = 1e-9 * std::max(1.0, std::abs(last));
@@ -362,11 +365,12 @@ void check_consistency(const Reader& in, const RunResult& r, bool has_stable_ste
     const StepRecord* at = last_equilibrium(r, r.capacity);
     const int expected = at ? at->index : 0;
     if (r.stable_steps != expected)
-      in.fail("results", "field 'stable_steps' = " + std::to_string(r.stable_steps) + ", but the last equilibrium at or before the capacity is step " +
-                             std::to_string(expected));
+      in.fail("results", "field 'stable_steps' = " + std::to_string(r.stable_steps) +
+                             ", but the last equilibrium at or before the capacity is step " + std::to_string(expected));
   }
   if (has_collapsed && r.collapsed != (r.status == RunStatus::collapse))
-    in.fail("results", std::string("field 'collapsed' = ") + (r.collapsed ? "true" : "false") + " contradicts 'stopped' = \"" + status_name(r.status) + "\"");
+    in.fail("results",
+            std::string("field 'collapsed' = ") + (r.collapsed ? "true" : "false") + " contradicts 'stopped' = \"" + status_name(r.status) + "\"");
 }
 
 }  // namespace
@@ -380,9 +384,18 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
   }
   Reader in(source, c);
   const std::string w = "results";
-  in.only(j, w, {"format", "units", "version", "method", "case", "capacity", "stable_steps", "collapsed", "stopped", "message",
-                 "total_weight", "settings", "timing", "blocks", "joints", "steps", "events", "collapse", "wall_s", "collapse_bracket",
-                 "limit_point", "unconfirmed_failures", "sliding"});
+  in.only(j, w, {"format",       "units",
+                 "version",      "method",
+                 "case",         "capacity",
+                 "stable_steps", "collapsed",
+                 "stopped",      "message",
+                 "total_weight", "settings",
+                 "timing",       "blocks",
+                 "joints",       "steps",
+                 "events",       "collapse",
+                 "wall_s",       "collapse_bracket",
+                 "limit_point",  "unconfirmed_failures",
+                 "sliding"});
   const std::string format = in.text(in.need(j, w, "format"), w, "format");
   if (format != "masonry-results/1") in.fail(w, "field 'format' must be \"masonry-results/1\", not \"" + printable(format) + "\"");
   RunResult r;
@@ -406,8 +419,10 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
     if (!j["settings"].is_object()) in.fail(w, "field 'settings' must be a JSON object");
     r.settings = j["settings"];
   }
-  if (j.contains("timing")) r.timing = read_timing(in, j["timing"]);
-  else r.timing.total_s = kNaN;
+  if (j.contains("timing"))
+    r.timing = read_timing(in, j["timing"]);
+  else
+    r.timing.total_s = kNaN;
   if (j.contains("blocks")) read_blocks(in, in.array(j, w, "blocks"));
   r.joints = read_joints(in, in.array(j, w, "joints"));
   in.joints = static_cast<int>(r.joints.size());

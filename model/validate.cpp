@@ -15,8 +15,8 @@ bool segments_intersect(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2&
   const double den = cross(d1, d2);
   if (std::abs(den) <= 1e-14 * d1.norm() * d2.norm()) {
     // Parallel: they meet only if collinear and overlapping.
-    if (distance_to_segment(r, p, q) > tol && distance_to_segment(s, p, q) > tol &&
-        distance_to_segment(p, r, s) > tol && distance_to_segment(q, r, s) > tol)
+    if (distance_to_segment(r, p, q) > tol && distance_to_segment(s, p, q) > tol && distance_to_segment(p, r, s) > tol &&
+        distance_to_segment(q, r, s) > tol)
       return false;
     return std::abs(cross(d1, r - p)) <= tol * d1.norm();
   }
@@ -37,9 +37,7 @@ bool segments_cross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s, 
 
 // A point of `a` lies inside `b` deeper than tol, or their edges cross.
 bool polygons_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double tol) {
-  auto deep_inside = [&](const Vec2& p, const std::vector<Vec2>& poly) {
-    return point_in_polygon(p, poly) && distance_to_boundary(p, poly) > tol;
-  };
+  auto deep_inside = [&](const Vec2& p, const std::vector<Vec2>& poly) { return point_in_polygon(p, poly) && distance_to_boundary(p, poly) > tol; };
   for (int pass = 0; pass < 2; ++pass) {
     const auto& P = pass == 0 ? a : b;
     const auto& Q = pass == 0 ? b : a;
@@ -62,9 +60,7 @@ bool polygons_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b, do
 
 void validate_geometry(const Case& c) {
   const double tol = c.prd.contact_tolerance;
-  auto fail = [&](const Block& b, const std::string& what) {
-    throw CaseError(c.source + ": block '" + printable(b.id) + "': " + what);
-  };
+  auto fail = [&](const Block& b, const std::string& what) { throw CaseError(c.source + ": block '" + printable(b.id) + "': " + what); };
   for (const Block& b : c.blocks) {
     const auto& v = b.vertices;
     const size_t n = v.size();
@@ -86,8 +82,7 @@ void validate_geometry(const Case& c) {
       const Vec2 &p = v[k], &q = v[(k + 1) % n], &r = v[(k + 2) % n];
       const Vec2 d1 = q - p, d2 = r - q;
       if (std::abs(cross(d1, d2)) <= 1e-12 * d1.norm() * d2.norm() && d1.dot(d2) < 0)
-        fail(b, "field 'vertices': self-intersecting (edges " + std::to_string(k) + " and " +
-                    std::to_string((k + 1) % n) + " fold back)");
+        fail(b, "field 'vertices': self-intersecting (edges " + std::to_string(k) + " and " + std::to_string((k + 1) % n) + " fold back)");
     }
     // Non-adjacent edges that meet. A sweep along x: edges sorted by their lowest x, each compared
     // only with the later ones that start before it ends, so a block of 100,000 vertices takes

@@ -6,8 +6,7 @@ namespace masonry::prd_detail {
 
 // The first open corner that closes within a move of `limit` along the path, and the move
 
-Closing first_closing(const Model& m, const Path& U, const std::vector<double>& gap,
-                      const std::vector<double>& rate, double limit) {
+Closing first_closing(const Model& m, const Path& U, const std::vector<double>& gap, const std::vector<double>& rate, double limit) {
   Closing c;
   const double target = m.tol;
   for (size_t e = 0; e < m.ends.size(); ++e) {
@@ -24,8 +23,7 @@ Closing first_closing(const Model& m, const Path& U, const std::vector<double>& 
     double lo = 0;
     // Bisection to a bracket whose gaps differ by a tenth of the target (or whose length is
     // round-off), so that the end reached is closed but not penetrating.
-    for (int it = 0; it < 100 && hi - lo > 1e-12 * limit &&
-                     gap_after(m, U, e, lo) - gap_after(m, U, e, hi) > 0.1 * target; ++it) {
+    for (int it = 0; it < 100 && hi - lo > 1e-12 * limit && gap_after(m, U, e, lo) - gap_after(m, U, e, hi) > 0.1 * target; ++it) {
       const double mid = 0.5 * (lo + hi);
       (gap_after(m, U, e, mid) > target ? lo : hi) = mid;
     }
@@ -33,7 +31,6 @@ Closing first_closing(const Model& m, const Path& U, const std::vector<double>& 
   }
   return c;
 }
-
 
 // Where, between configuration a and the current one (a distance `span` further on), the
 // basis of a's LP stopped being the optimum: that basis (and contact state) is evaluated here
@@ -70,17 +67,14 @@ double first_zero(double f, double b, double k) {
   return x > 0 ? x : std::numeric_limits<double>::infinity();
 }
 
-
 // Where a closed corner of configuration a is expected to open, as a distance x in d: where
 // its normal force f + slope x + curve x^2 reaches 0. (For a fixed basis the duals vary
 // smoothly with the geometry; the basis changes where one of them would turn negative.)
 // Corners `ignored` are left out (see prd_run).
-Move predict_opening(const Accepted& a, const std::vector<double>& slope, const std::vector<double>& curve,
-                     const std::vector<char>& ignored) {
+Move predict_opening(const Accepted& a, const std::vector<double>& slope, const std::vector<double>& curve, const std::vector<char>& ignored) {
   Move mv;
   for (size_t e = 0; e < slope.size(); ++e)
-    if (a.closed[e] && a.fn[e] > 0 && !ignored[e])
-      mv.consider(first_zero(a.fn[e], slope[e], curve.empty() ? 0.0 : curve[e]), e);
+    if (a.closed[e] && a.fn[e] > 0 && !ignored[e]) mv.consider(first_zero(a.fn[e], slope[e], curve.empty() ? 0.0 : curve[e]), e);
   return mv;
 }
 
@@ -91,9 +85,8 @@ Move predict_opening(const Accepted& a, const std::vector<double>& slope, const 
 // otherwise. `guess` is the prediction the move came from. A move longer than `short_move`
 // follows the mean of the mechanisms at both ends (a.dU: Heun's second-order step); a shorter
 // one needs no check. (Closings are left to first_closing, on the move's exact path.)
-Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const Move& guess,
-               const std::vector<double>& slope, const std::vector<char>& ignored, double short_move,
-               const std::function<double(double)>& land) {
+Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const Move& guess, const std::vector<double>& slope,
+               const std::vector<char>& ignored, double short_move, const std::function<double(double)>& land) {
   Move mv = guess;
   mv.h = x;
   a.dU.clear();
@@ -115,8 +108,7 @@ Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const M
       if (ignored[e]) continue;
       if (a.closed[e] && a.fn[e] > 0) {
         const double f0 = a.fn[e], f1 = corner_force(m, e);
-        at.consider(slope.empty() ? first_zero(f0, (f1 - f0) / x, 0.0)
-                                  : first_zero(f0, slope[e], (f1 - f0 - slope[e] * x) / (x * x)), e);
+        at.consider(slope.empty() ? first_zero(f0, (f1 - f0) / x, 0.0) : first_zero(f0, slope[e], (f1 - f0 - slope[e] * x) / (x * x)), e);
       }
     }
     mv = at;
@@ -144,7 +136,6 @@ Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const M
   }
   return mv;
 }
-
 
 Event make_event(const Model& m, EventKind kind, double d, double within, const std::vector<size_t>& corners) {
   Event ev{kind, d, within, {}};

@@ -16,9 +16,9 @@
 #include "model/case.hpp"
 #include "model/interfaces.hpp"
 #include "model/io.hpp"
+#include "model/results.hpp"
 #include "prd/glpk_hooks.hpp"
 #include "prd/prd.hpp"
-#include "model/results.hpp"
 
 namespace masonry::prd_detail {
 
@@ -46,7 +46,7 @@ inline GlpProblem new_glp_problem() { return GlpProblem(glp_create_prob(), GlpDe
 
 struct Endpoint {
   int joint;
-  int corner;    // 0 = A, 1 = B
+  int corner;  // 0 = A, 1 = B
   // The corner's material points on blocks i and j (initial configuration): the joint's end,
   // shared by both blocks, unless a run started from a deformed configuration keeps the
   // corner's offset there (PrdStart, start_from).
@@ -76,7 +76,7 @@ struct Model {
   double force_unit = 1.0;     // N: the LP's objective is the loads over this (build_model)
   int ncols = 0;
   GlpProblem lp;
-  bool fresh = true;            // not solved yet (solve)
+  bool fresh = true;             // not solved yet (solve)
   std::vector<double> row_coef;  // per LP row: its entry count and coefficients as GLPK holds them (update_lp)
   FirstBasis first_basis = FirstBasis::by_size;
   double lp_s = 0;
@@ -132,12 +132,12 @@ struct Accepted {
   int index = 0;
   std::vector<Vec2> cen;
   std::vector<double> angle;
-  std::vector<char> closed;        // the contact state its LP used
-  std::vector<double> U, gap, rate;  // its LP's mechanism, gaps and their rates
-  std::vector<double> dU;            // the mechanism's change along d (empty: not known)
-  double h_lp = 0;                   // the step its LP was solved with
-  std::vector<double> fn;            // its LP's normal force at each corner, N
-  bool same = true;                  // its LP kept the contact state (no corner opens or closes)
+  std::vector<char> closed;             // the contact state its LP used
+  std::vector<double> U, gap, rate;     // its LP's mechanism, gaps and their rates
+  std::vector<double> dU;               // the mechanism's change along d (empty: not known)
+  double h_lp = 0;                      // the step its LP was solved with
+  std::vector<double> fn;               // its LP's normal force at each corner, N
+  bool same = true;                     // its LP kept the contact state (no corner opens or closes)
   std::vector<int> row_stat, col_stat;  // its LP's final basis
   std::vector<double> slack;            // its LP's no-penetration rows' slacks (LP units)
 };
@@ -171,9 +171,9 @@ struct FrictionProblem {
   int ncols = 0, nrows_eq = 0;
   std::vector<int> ia{0}, ja{0};  // equilibrium coefficients, GLPK's 1-based triplets
   std::vector<double> ar{0.0};
-  std::vector<double> loads;       // generalised_loads: each equilibrium row's right-hand side is -loads
-  std::vector<int> fn_col;         // per corner: its f_n column, 0 if open
-  std::vector<int> ft_col;         // per joint: its f_t column, 0 if not in contact
+  std::vector<double> loads;  // generalised_loads: each equilibrium row's right-hand side is -loads
+  std::vector<int> fn_col;    // per corner: its f_n column, 0 if open
+  std::vector<int> ft_col;    // per joint: its f_t column, 0 if not in contact
   std::vector<int> joints_in_contact;
 };
 // Its GLPK problem, loaded once per configuration and solved for several mu, warm started.
@@ -190,8 +190,8 @@ Model build_model(const Case& c, double tol);
 std::vector<double> generalised_loads(const Model& m);  // N (and N m / L_b)
 void update_lp(Model& m, double h, double scale, double h_open = 0);
 LpStatus solve(Model& m);
-double objective(const Model& m);        // of the last solve: N times the columns' unit (x the LP's scale: J)
-double col_value(const Model& m, int j);  // column j's primal value (1-based)
+double objective(const Model& m);               // of the last solve: N times the columns' unit (x the LP's scale: J)
+double col_value(const Model& m, int j);        // column j's primal value (1-based)
 double corner_force(const Model& m, size_t e);  // dual of corner e's no-penetration row, N
 double corner_slack(const Model& m, size_t e);  // primal minus bound of that row, LP units
 // Marks the corners named BLOCK/BLOCK:A held (Endpoint::held); throws naming the case for a name no corner has.
@@ -212,7 +212,7 @@ int evaluate_basis(Model& m, const Accepted& a, double h, double h_open);
 // The sliding check's feasibility LP (sliding.cpp builds the problem).
 void load_friction_lp(SlidingLp& S, const FrictionProblem& p);
 bool friction_feasible(SlidingLp& S, const FrictionProblem& p, double mu);  // an admissible state at mu
-double friction_col_value(const SlidingLp& S, int j);  // of the last feasible solve
+double friction_col_value(const SlidingLp& S, int j);                       // of the last feasible solve
 
 // ---- motion.cpp: finite rigid motion, gaps and the contact state, configuration records.
 Vec2 pole_displacement(const Vec2& u, double th);
@@ -221,8 +221,7 @@ std::vector<JointInfo> joint_infos(const Model& m);
 std::vector<Pose> poses(const Model& m);
 void record_corners(const Model& m, StepRecord& rec);
 void gaps_and_rates(const Model& m, double h, double h_open, std::vector<double>& gap, std::vector<double>& rate);
-std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, const std::vector<double>& rate,
-                               double h_lp, double h, double h_ref);
+std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, const std::vector<double>& rate, double h_lp, double h, double h_ref);
 void pose_after(const Model& m, const Path& path, size_t b, double h, Vec2& cen, double& angle);
 void advance(Model& m, const Path& path, double h);
 double gap_after(const Model& m, const Path& U, size_t e, double h);
@@ -230,15 +229,12 @@ void set_closed(Model& m, const std::vector<char>& closed);
 StepRecord configuration_record(const Model& m, int index, double d);
 
 // ---- events.cpp: where the next event is, for adaptive runs.
-Closing first_closing(const Model& m, const Path& U, const std::vector<double>& gap,
-                      const std::vector<double>& rate, double limit);
+Closing first_closing(const Model& m, const Path& U, const std::vector<double>& gap, const std::vector<double>& rate, double limit);
 std::optional<double> basis_crossing(Model& m, const Accepted& a, double span, double tol_ev);
 double first_zero(double f, double b, double k);
-Move predict_opening(const Accepted& a, const std::vector<double>& slope, const std::vector<double>& curve,
-                     const std::vector<char>& ignored);
-Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const Move& guess,
-               const std::vector<double>& slope, const std::vector<char>& ignored, double short_move,
-               const std::function<double(double)>& land);
+Move predict_opening(const Accepted& a, const std::vector<double>& slope, const std::vector<double>& curve, const std::vector<char>& ignored);
+Move plan_move(Model& m, Accepted& a, double h, double h_open, double x, const Move& guess, const std::vector<double>& slope,
+               const std::vector<char>& ignored, double short_move, const std::function<double(double)>& land);
 Event make_event(const Model& m, EventKind kind, double d, double within, const std::vector<size_t>& corners);
 
 // ---- sliding.cpp

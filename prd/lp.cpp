@@ -158,8 +158,12 @@ void update_lp(Model& m, double h, double scale, double h_open) {
 
 // GLPK's solves, where the numbers can fail its internal checks: guarded, so that such a failure
 // is the run's error (prd/glpk_hooks.hpp).
-int simplex(glp_prob* lp, const glp_smcp& parm) { return prd::glpk_guarded([&] { return glp_simplex(lp, &parm); }); }
-int exact(glp_prob* lp, const glp_smcp& parm) { return prd::glpk_guarded([&] { return glp_exact(lp, &parm); }); }
+int simplex(glp_prob* lp, const glp_smcp& parm) {
+  return prd::glpk_guarded([&] { return glp_simplex(lp, &parm); });
+}
+int exact(glp_prob* lp, const glp_smcp& parm) {
+  return prd::glpk_guarded([&] { return glp_exact(lp, &parm); });
+}
 
 // glp_adv_basis prints whatever msg_lev says; the harness's output is its own.
 void quiet_adv_basis(glp_prob* lp) {
@@ -198,8 +202,7 @@ LpStatus solve(Model& m) {
   // which one the LP's duals are, and the standard scenes (at most 276 blocks) keep theirs (the
   // cathedral's aisles: 1.3% of the weight apart; mechanisms and capacities are the same from
   // either start, tests/prd/first_basis_test.cpp).
-  const bool advanced = m.first_basis == FirstBasis::advanced ||
-                        (m.first_basis == FirstBasis::by_size && m.ncols >= 3 * kAdvancedBasisBlocks);
+  const bool advanced = m.first_basis == FirstBasis::advanced || (m.first_basis == FirstBasis::by_size && m.ncols >= 3 * kAdvancedBasisBlocks);
   if (m.fresh && advanced) quiet_adv_basis(lp);
   m.fresh = false;
   int rc = simplex(lp, parm);
@@ -229,7 +232,6 @@ double corner_slack(const Model& m, size_t e) {
   const int row = 2 * static_cast<int>(e) + 1;
   return glp_get_row_prim(m.lp.get(), row) - glp_get_row_lb(m.lp.get(), row);
 }
-
 
 // Forces from the row duals: joint resultants and support reactions, on the current geometry.
 void read_forces(const Model& m, StepRecord& rec) {
@@ -293,7 +295,6 @@ std::vector<double> slacks(const Model& m, double scale) {
   return s;
 }
 
-
 // The collapse mechanism: the same LP with every increment boxed to one unit, so that it has
 // an optimum whose open corners show the mechanism. The columns are freed again afterwards.
 Mechanism collapse_mechanism(Model& m, double scale) {
@@ -315,7 +316,6 @@ Mechanism collapse_mechanism(Model& m, double scale) {
   return out;
 }
 
-
 void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
   // Strong duality: the primal optimum equals sum(dual * bound) over the active rows.
   glp_prob* lp = m.lp.get();
@@ -328,13 +328,11 @@ void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
   rec.lp = LpOptima{objective(m) * scale, dual * m.force_unit * scale};
 }
 
-
 std::vector<double> column_values(const Model& m) {
   std::vector<double> U(m.ncols + 1, 0.0);
   for (int j = 1; j <= m.ncols; ++j) U[j] = glp_get_col_prim(m.lp.get(), j);
   return U;
 }
-
 
 void save_basis(const Model& m, Accepted& a) {
   glp_prob* lp = m.lp.get();

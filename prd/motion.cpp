@@ -1,8 +1,7 @@
 // Finite rigid motion along a mechanism, the gaps it gives, the contact state and the
 // configuration records.
-#include "prd/internal.hpp"
-
 #include "model/energy.hpp"
+#include "prd/internal.hpp"
 
 namespace masonry::prd_detail {
 
@@ -24,7 +23,6 @@ Vec2 pole_displacement(const Vec2& u, double th) {
   return -Vec2(q * w.x() - s * w.y(), s * w.x() + q * w.y());
 }
 
-
 Increment support_increment(const Model& m, int b, double h) {
   Increment inc;
   inc.at = m.cen[b];
@@ -35,7 +33,6 @@ Increment support_increment(const Model& m, int b, double h) {
   inc.th = h * s.rotation;
   return inc;
 }
-
 
 std::vector<JointInfo> joint_infos(const Model& m) {
   std::vector<JointInfo> out;
@@ -49,7 +46,6 @@ std::vector<Pose> poses(const Model& m) {
   return out;
 }
 
-
 void record_corners(const Model& m, StepRecord& rec) {
   std::vector<char> cracked(m.joints.size(), 0);
   for (size_t e = 0; e < m.ends.size(); ++e) {
@@ -61,7 +57,6 @@ void record_corners(const Model& m, StepRecord& rec) {
   for (size_t k = 0; k < cracked.size(); ++k)
     if (cracked[k]) rec.cracked.push_back(static_cast<int>(k));
 }
-
 
 // Per endpoint, from the LP just solved with step h (open corners held over h_open, see
 // update_lp): the gap on the current configuration and its rate of change along the mechanism
@@ -84,14 +79,12 @@ void gaps_and_rates(const Model& m, double h, double h_open, std::vector<double>
 // at the end of the LP's step (the residual gap of earlier finite updates is taken back in
 // that step) scaled to h_ref, so the state does not depend on the step being taken. With
 // h = h_lp = h_ref both rules are "gap at the end of the step below the tolerance".
-std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, const std::vector<double>& rate,
-                               double h_lp, double h, double h_ref) {
+std::vector<char> closed_after(const Model& m, const std::vector<double>& gap, const std::vector<double>& rate, double h_lp, double h, double h_ref) {
   std::vector<char> out(m.ends.size());
   for (size_t e = 0; e < m.ends.size(); ++e)
     out[e] = m.ends[e].closed ? (gap[e] + rate[e] * h_lp) * (h_ref / h_lp) <= m.tol : gap[e] + rate[e] * h <= m.tol;
   return out;
 }
-
 
 // Where block b is after a finite update by h along the path: a free block rotates about its
 // own pole, a support moves as prescribed.
@@ -132,7 +125,6 @@ double gap_after(const Model& m, const Path& U, size_t e, double h) {
   return (pj - pi).dot(rot(ai) * jt.normal);
 }
 
-
 namespace {
 // Whether x is one of the polygon's vertices (within tol, m).
 bool is_vertex(const std::vector<Vec2>& poly, const Vec2& x, double tol) {
@@ -145,14 +137,13 @@ bool is_vertex(const std::vector<Vec2>& poly, const Vec2& x, double tol) {
 void start_from(Model& m, const PrdStart& start) {
   const Case& c = *m.c;
   if (start.poses.size() != c.blocks.size())
-    throw std::invalid_argument(c.source + ": prd: the start configuration has " + std::to_string(start.poses.size()) +
-                                " poses for " + std::to_string(c.blocks.size()) + " blocks (" + start.source + ")");
+    throw std::invalid_argument(c.source + ": prd: the start configuration has " + std::to_string(start.poses.size()) + " poses for " +
+                                std::to_string(c.blocks.size()) + " blocks (" + start.source + ")");
   if (!std::isfinite(start.d)) throw std::invalid_argument(c.source + ": prd: the start's d is not a number (" + start.source + ")");
   for (size_t b = 0; b < c.blocks.size(); ++b) {
     const Pose& q = start.poses[b];
     if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.angle))
-      throw std::invalid_argument(c.source + ": block '" + printable(c.blocks[b].id) + "': the start pose is not a number (" +
-                                  start.source + ")");
+      throw std::invalid_argument(c.source + ": block '" + printable(c.blocks[b].id) + "': the start pose is not a number (" + start.source + ")");
     m.cen[b] = Vec2(q.x, q.y);
     m.angle[b] = q.angle;
   }
@@ -229,7 +220,6 @@ void record_held(const Model& m, StepRecord& rec) {
 void set_closed(Model& m, const std::vector<char>& closed) {
   for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = closed[e];
 }
-
 
 StepRecord configuration_record(const Model& m, int index, double d) {
   StepRecord rec;

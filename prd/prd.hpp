@@ -26,15 +26,15 @@ struct PrdStart {
   double d = 0.0;           // m: the record's d; the run's records and capacity count from it
   std::vector<Pose> poses;  // one per block, in case order (centroid and rotation since the start)
   StartOffsets offsets = StartOffsets::keep;
-  std::string source;       // where the configuration comes from, for the results' settings
+  std::string source;  // where the configuration comes from, for the results' settings
 };
 const char* start_offsets_name(StartOffsets o);  // "keep", "take-back": the CLI's words
 
 // PRD's settings (model/case.hpp's PrdOptions, declared once there) and the motion's increment,
 // as one run takes them.
 struct PrdSettings : PrdOptions {
-  double step = 0.001;   // increment of d per step, m
-  int max_steps = 1000;  // the run ends after max_steps steps (at d = max_steps * step from the start)
+  double step = 0.001;            // increment of d per step, m
+  int max_steps = 1000;           // the run ends after max_steps steps (at d = max_steps * step from the start)
   std::optional<PrdStart> start;  // absent: from the case's own geometry at d = 0
   static PrdSettings from_case(const Case& c);
 };
@@ -63,8 +63,8 @@ struct FirstStep {
   bool bounded = false;        // false: the structure collapses at d = 0 (the LP is unbounded)
   double energy_change = 0.0;  // J: potential energy of the loads over the step (negative: released)
   struct Opening {
-    std::string corner;        // "BLOCK/BLOCK:A"
-    double opening = 0.0;      // m, over the step
+    std::string corner;    // "BLOCK/BLOCK:A"
+    double opening = 0.0;  // m, over the step
   };
   std::vector<Opening> opening;  // the corners the step opens by more than 1e-6 of h
 };
@@ -72,8 +72,7 @@ FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, cons
 
 // The capacity run. `on_step` is called after every finished step (and once at the start, for
 // the initial configuration) with the result so far, so the caller can write it as it goes.
-RunResult prd_run(const Case& c, const PrdSettings& s,
-                  const std::function<void(const RunResult&)>& on_step = {});
+RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(const RunResult&)>& on_step = {});
 
 // The sliding check's answer for a whole run, from its records' StepRecord::sliding:
 //   required_friction_angle (deg): the largest over the steps of the smallest friction angle
@@ -88,10 +87,10 @@ SlidingSummary sliding_summary(const Case& c, const RunResult& r);
 // the best admissible state) exceeds angle_deg.
 struct SlidingExceedance {
   int step = 0;
-  double d = 0.0;       // m
-  double angle = 0.0;   // deg
+  double d = 0.0;      // m
+  double angle = 0.0;  // deg
   int joint = -1;
-  std::string blocks;   // "i/j" block ids
+  std::string blocks;  // "i/j" block ids
 };
 std::optional<SlidingExceedance> first_sliding(const Case& c, const RunResult& r, double angle_deg, bool required);
 

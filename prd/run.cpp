@@ -42,9 +42,7 @@ PrdCheck prd_check(const Case& c, double contact_tolerance) {
     out.collapse = collapse_mechanism(m, scale);
     out.mechanism.assign(c.blocks.size(), Pose{});
     for (size_t b = 0; b < c.blocks.size(); ++b)
-      if (m.col[b] > 0)
-        out.mechanism[b] = {col_value(m, m.col[b]), col_value(m, m.col[b] + 1),
-                            col_value(m, m.col[b] + 2) / m.radius[b]};
+      if (m.col[b] > 0) out.mechanism[b] = {col_value(m, m.col[b]), col_value(m, m.col[b] + 1), col_value(m, m.col[b] + 2) / m.radius[b]};
   } else {
     throw std::runtime_error(c.source + ": the analysis LP is infeasible (blocks overlap beyond the tolerance?)");
   }
@@ -91,17 +89,17 @@ struct Walk {
   // Where the walk stands.
   Accepted cur;
   std::optional<Accepted> prev, prev2;  // the last accepted configurations, newest first
-  StepRecord rec;                        // cur's record, completed when cur is accepted
-  double h_in = 0;        // the move that led to cur
-  double h_plan = 0;      // the step the next LP is solved for
+  StepRecord rec;                       // cur's record, completed when cur is accepted
+  double h_in = 0;                      // the move that led to cur
+  double h_plan = 0;                    // the step the next LP is solved for
   // Bracketing an event: the d where it was seen, not yet located (nothing: moving along the
   // path, no event pending).
   std::optional<double> seen;
   std::optional<double> crossing;         // where the previous basis's forces were estimated to reach 0, m
   std::optional<double> arrived_closing;  // the move to cur ended where a corner closed: located within this, m
   std::optional<size_t> passing;          // the corner the move to cur was to take past its predicted opening
-  std::vector<char> ignored;    // corners left out of the predictions (above)
-  std::vector<double> gap, rate;  // cur's corner gaps and their rates, from its LP
+  std::vector<char> ignored;              // corners left out of the predictions (above)
+  std::vector<double> gap, rate;          // cur's corner gaps and their rates, from its LP
 
   Walk(const Case& c, const PrdSettings& settings) : s(settings), m(build_model(c, settings.contact_tolerance)) {
     // A fixed-step run is the event-driven one with every step accepted: the step never
@@ -111,9 +109,7 @@ struct Walk {
     // The longest move. A move's path error (second order, see Path) grows as the square of
     // its length against the scene's, so the default keeps it within the event tolerance:
     // 0.4 sqrt(tolerance x scene size), 1/250 of the scene at the default tolerance.
-    h_max = !s.adaptive ? h_ref
-                        : std::max(s.max_step > 0 ? s.max_step : std::min(16 * h_ref, 0.4 * std::sqrt(tol_ev * scene_size(c))),
-                                   tol_ev);
+    h_max = !s.adaptive ? h_ref : std::max(s.max_step > 0 ? s.max_step : std::min(16 * h_ref, 0.4 * std::sqrt(tol_ev * scene_size(c))), tol_ev);
     if (s.start) {
       start_from(m, *s.start);
       d0 = s.start->d;
@@ -150,8 +146,8 @@ struct Walk {
 // What the LP solved on the current configuration says.
 struct Solved {
   LpStatus status = LpStatus::optimal;
-  double h = 0, h_open = 0;                // the step it was solved for; open corners held over h_open
-  std::vector<size_t> opened, closing;     // corners whose contact state it changes
+  double h = 0, h_open = 0;             // the step it was solved for; open corners held over h_open
+  std::vector<size_t> opened, closing;  // corners whose contact state it changes
 };
 
 // The move from an accepted configuration.
@@ -305,8 +301,7 @@ Move plan_on_trend(Walk& w, const Solved& sv) {
     x = std::min(x, w.land(guess.to_open));
   }
   if (w.before_end(cur.d)) x = std::min(x, w.d_end - cur.d);
-  return plan_move(w.m, w.cur, sv.h, sv.h_open, x, guess, slope, w.ignored, 2 * w.tol_ev,
-                   [&w](double y) { return w.land(y); });
+  return plan_move(w.m, w.cur, sv.h, sv.h_open, x, guess, slope, w.ignored, 2 * w.tol_ev, [&w](double y) { return w.land(y); });
 }
 
 // Stage "plan": how far to move from cur (a fixed run: one step), and the step the next LP is
@@ -382,7 +377,8 @@ FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, cons
   update_lp(m, h, h, h);
   FirstStep out;
   const LpStatus st = m.ncols == 0 ? LpStatus::optimal : solve(m);
-  if (st == LpStatus::infeasible) throw std::runtime_error(c.source + ": the first step's LP is infeasible (the held corners cannot all stay closed)");
+  if (st == LpStatus::infeasible)
+    throw std::runtime_error(c.source + ": the first step's LP is infeasible (the held corners cannot all stay closed)");
   out.bounded = st == LpStatus::optimal;
   if (!out.bounded) return out;
   // The columns are the increments over the step in units of h: the objective is the loads'
@@ -414,8 +410,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   set_setting(r.settings, &Motion::step, s.step);
   set_setting(r.settings, &Motion::max_steps, s.max_steps);
   r.settings.update(echo_options<PrdOptions>(s));
-  if (s.start)
-    r.settings["start"] = {{"d", s.start->d}, {"offsets", start_offsets_name(s.start->offsets)}, {"from", s.start->source}};
+  if (s.start) r.settings["start"] = {{"d", s.start->d}, {"offsets", start_offsets_name(s.start->offsets)}, {"from", s.start->source}};
   if (s.adaptive) {
     set_setting(r.settings, &PrdOptions::event_tolerance, w.tol_ev);
     set_setting(r.settings, &PrdOptions::max_step, w.h_max);

@@ -23,8 +23,8 @@
 #include "compare/report.hpp"
 #include "model/case.hpp"
 #include "model/io.hpp"
-#include "model/results.hpp"
 #include "model/method.hpp"
+#include "model/results.hpp"
 #include "runs/run.hpp"
 #include "sweep/sweep.hpp"
 #include "validate/validate.hpp"
@@ -189,8 +189,7 @@ py::list open_corners_list(const RunResult& r) {
 
 py::list joints_list(const PyResult& p) {
   py::list joints;
-  for (const JointInfo& j : p.run.joints)
-    joints.append(py::make_tuple(p.c.blocks.at(j.i).id, p.c.blocks.at(j.j).id));
+  for (const JointInfo& j : p.run.joints) joints.append(py::make_tuple(p.c.blocks.at(j.i).id, p.c.blocks.at(j.j).id));
   return joints;
 }
 
@@ -328,22 +327,38 @@ Case wall_case(const nlohmann::json& v) {
         if (!o.is_string()) throw CaseError(where + ": parameter 'opening' must be \"X,SILL,WIDTH,HEIGHT[,lintel|arch]\" or a list of them");
         p.openings.push_back(parse_wall_opening(o.get<std::string>()));
       }
-    } else if (k == "courses") p.courses = whole(k, x);
-    else if (k == "bricks") p.bricks = whole(k, x);
-    else if (k == "arch-voussoirs") p.arch_voussoirs = whole(k, x);
-    else if (k == "max-steps") p.max_steps = whole(k, x);
-    else if (k == "brick-length") p.brick_length = number(k, x);
-    else if (k == "header-length") p.header_length = number(k, x);
-    else if (k == "course-height") p.course_height = number(k, x);
-    else if (k == "depth") p.depth = number(k, x);
-    else if (k == "density") p.density = number(k, x);
-    else if (k == "lintel-bearing") p.lintel_bearing = number(k, x);
-    else if (k == "arch-thickness") p.arch_thickness = number(k, x);
-    else if (k == "ground-height") p.ground_height = number(k, x);
-    else if (k == "ground-split") p.ground_split = number(k, x);
-    else if (k == "settlement-step") p.settlement_step = number(k, x);
-    else if (k == "rotation-step") p.rotation_step = number(k, x);
-    else if (k == "step") p.step = number(k, x);
+    } else if (k == "courses")
+      p.courses = whole(k, x);
+    else if (k == "bricks")
+      p.bricks = whole(k, x);
+    else if (k == "arch-voussoirs")
+      p.arch_voussoirs = whole(k, x);
+    else if (k == "max-steps")
+      p.max_steps = whole(k, x);
+    else if (k == "brick-length")
+      p.brick_length = number(k, x);
+    else if (k == "header-length")
+      p.header_length = number(k, x);
+    else if (k == "course-height")
+      p.course_height = number(k, x);
+    else if (k == "depth")
+      p.depth = number(k, x);
+    else if (k == "density")
+      p.density = number(k, x);
+    else if (k == "lintel-bearing")
+      p.lintel_bearing = number(k, x);
+    else if (k == "arch-thickness")
+      p.arch_thickness = number(k, x);
+    else if (k == "ground-height")
+      p.ground_height = number(k, x);
+    else if (k == "ground-split")
+      p.ground_split = number(k, x);
+    else if (k == "settlement-step")
+      p.settlement_step = number(k, x);
+    else if (k == "rotation-step")
+      p.rotation_step = number(k, x);
+    else if (k == "step")
+      p.step = number(k, x);
     else
       throw CaseError(where + ": no parameter '" + printable(k) + "' (masonry cases wall --help)");
   }
@@ -360,9 +375,9 @@ py::list generator_list() {
       d["name"] = p.name;
       d["kind"] = p.kind == ParameterKind::number ? "number" : p.kind == ParameterKind::integer ? "integer" : "flag";
       d["help"] = p.help;
-      d["default"] = p.kind == ParameterKind::flag ? py::object(py::bool_(p.value != 0))
+      d["default"] = p.kind == ParameterKind::flag      ? py::object(py::bool_(p.value != 0))
                      : p.kind == ParameterKind::integer ? py::object(py::int_(static_cast<long long>(p.value)))
-                                                         : py::object(py::float_(p.value));
+                                                        : py::object(py::float_(p.value));
       params.append(d);
     }
     py::dict d;
@@ -399,9 +414,8 @@ PYBIND11_MODULE(_masonry, m) {
       .def_readonly("source", &Case::source)
       .def("blocks", &blocks_list)
       .def("to_json", &case_to_json)
-      .def("with_option", [](const Case& c, const std::string& key, const std::string& value_json) {
-        return with_option(c, key, nlohmann::json::parse(value_json));
-      })
+      .def("with_option", [](const Case& c, const std::string& key,
+                             const std::string& value_json) { return with_option(c, key, nlohmann::json::parse(value_json)); })
       .def("d_unit", &path_unit);
   m.def("parse_case", &parse_case, py::arg("text"), py::arg("source"));
   m.def("load_case", &load_case, py::arg("path"));
@@ -424,16 +438,18 @@ PYBIND11_MODULE(_masonry, m) {
       .def_property_readonly("time_s", [](const PyResult& p) { return p.run.timing.total_s; })
       .def_property_readonly("d", [](const PyResult& p) { return d_array(p.run); })
       .def_property_readonly("settled", [](const PyResult& p) { return settled_array(p.run); })
-      .def_property_readonly("supports", [](const PyResult& p) {
-        std::vector<std::string> ids;
-        for (int k : support_blocks(p.c)) ids.push_back(p.c.blocks[k].id);
-        return ids;
-      })
-      .def_property_readonly("blocks", [](const PyResult& p) {
-        std::vector<std::string> ids;
-        for (const Block& b : p.c.blocks) ids.push_back(b.id);
-        return ids;
-      })
+      .def_property_readonly("supports",
+                             [](const PyResult& p) {
+                               std::vector<std::string> ids;
+                               for (int k : support_blocks(p.c)) ids.push_back(p.c.blocks[k].id);
+                               return ids;
+                             })
+      .def_property_readonly("blocks",
+                             [](const PyResult& p) {
+                               std::vector<std::string> ids;
+                               for (const Block& b : p.c.blocks) ids.push_back(b.id);
+                               return ids;
+                             })
       .def_property_readonly("reactions", &reactions_array)
       .def_property_readonly("poses", &poses_array)
       .def_property_readonly("joints", &joints_list)
@@ -441,7 +457,8 @@ PYBIND11_MODULE(_masonry, m) {
       .def_property_readonly("settings", [](const PyResult& p) { return from_json(p.run.settings); })
       .def_property_readonly("_case", [](const PyResult& p) { return p.c; })
       .def("to_json", [](const PyResult& p) { return to_json(p.run, p.c).dump(1) + "\n"; })
-      .def("save", [](const PyResult& p, const std::string& dir) { write_results(dir, p.run, p.c); }, py::arg("dir"))
+      .def(
+          "save", [](const PyResult& p, const std::string& dir) { write_results(dir, p.run, p.c); }, py::arg("dir"))
       .def("__repr__", [](const PyResult& p) {
         return "<masonry.Result " + p.run.method + " " + p.run.case_name + ": " + status_name(p.run.status) + ", capacity " +
                py::repr(py::float_(p.run.capacity)).cast<std::string>() + " " + path_unit(p.c) + ">";

@@ -24,13 +24,13 @@ enum class Medium { both, markdown, html };
 struct Element {
   enum class Kind { heading, paragraph, list, table, figure, raw_html } kind = Kind::paragraph;
   Medium medium = Medium::both;
-  int level = 2;                 // heading
-  Text text;                     // heading, paragraph
-  std::vector<Item> items;       // list
-  Table table;                   // table
-  std::string file, caption;     // figure: the Markdown links `file` (relative), captioned
-  std::string svg;               // figure: the page inlines it
-  std::string html;              // raw_html: as it is, in the page only
+  int level = 2;              // heading
+  Text text;                  // heading, paragraph
+  std::vector<Item> items;    // list
+  Table table;                // table
+  std::string file, caption;  // figure: the Markdown links `file` (relative), captioned
+  std::string svg;            // figure: the page inlines it
+  std::string html;           // raw_html: as it is, in the page only
 };
 
 struct Document {

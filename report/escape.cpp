@@ -91,14 +91,23 @@ std::string md_escape(const std::string& s) {
         if (tag_at(s, k)) o += '\\';
         o += ch;
         break;
-      case '\n': case '\r': o += ' '; break;
+      case '\n':
+      case '\r': o += ' '; break;
       // Emphasis, code, links and images ('!' and '(' only act after '[' or ']'), tables and
       // strike-through; '#' makes a heading and '>' a quotation only at the start of a line.
-      case '\\': case '`': case '*': case '_': case '[': case ']': case '|': case '~':
+      case '\\':
+      case '`':
+      case '*':
+      case '_':
+      case '[':
+      case ']':
+      case '|':
+      case '~':
         o += '\\';
         o += ch;
         break;
-      case '#': case '>':
+      case '#':
+      case '>':
         if (k == 0) o += '\\';
         o += ch;
         break;

@@ -87,9 +87,9 @@ std::string svg_axes(const Plot& p, const Ticks& x, const Ticks& y, const std::s
   o << "<rect x=\"" << px(p.left) << "\" y=\"" << px(p.top) << "\" width=\"" << px(p.width) << "\" height=\"" << px(p.height + p.band)
     << "\" fill=\"none\" stroke=\"#333\"/>\n";
   if (p.band > 0)
-    o << "<line x1=\"" << px(p.left) << "\" x2=\"" << px(p.left + p.width) << "\" y1=\"" << px(p.top + p.height) << "\" y2=\""
-      << px(p.top + p.height) << "\" stroke=\"#333\" stroke-dasharray=\"3,3\"/><text x=\"" << px(p.left - 6) << "\" y=\""
-      << px(p.top + p.height + p.band * 0.6 + 4) << "\" text-anchor=\"end\">0</text>\n";
+    o << "<line x1=\"" << px(p.left) << "\" x2=\"" << px(p.left + p.width) << "\" y1=\"" << px(p.top + p.height) << "\" y2=\"" << px(p.top + p.height)
+      << "\" stroke=\"#333\" stroke-dasharray=\"3,3\"/><text x=\"" << px(p.left - 6) << "\" y=\"" << px(p.top + p.height + p.band * 0.6 + 4)
+      << "\" text-anchor=\"end\">0</text>\n";
   if (!x_title.empty())
     o << "<text x=\"" << px(p.left + p.width / 2) << "\" y=\"" << px(bottom + 32) << "\" text-anchor=\"middle\" font-size=\"12\">"
       << xml_escape(x_title) << "</text>\n";

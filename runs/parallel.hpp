@@ -2,9 +2,8 @@
 #pragma once
 
 #include <functional>
-#include <vector>
-
 #include <string>
+#include <vector>
 
 #include "dem/variants.hpp"
 #include "model/results.hpp"

@@ -22,8 +22,7 @@ std::string time_left(double elapsed_s, double fraction_done, bool at_most) {
   return b;
 }
 
-RunProgress::RunProgress(std::string who, double d_end, double every_s, std::function<std::string(const StepRecord&)> detail,
-                         std::string unit)
+RunProgress::RunProgress(std::string who, double d_end, double every_s, std::function<std::string(const StepRecord&)> detail, std::string unit)
     : who_(std::move(who)),
       d_end_(d_end),
       every_s_(every_s),

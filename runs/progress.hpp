@@ -26,8 +26,7 @@ std::string time_left(double elapsed_s, double fraction_done, bool at_most);
 // "m", or "rad" where the supports only turn).
 class RunProgress {
  public:
-  RunProgress(std::string who, double d_end, double every_s = 1.0, std::function<std::string(const StepRecord&)> detail = {},
-              std::string unit = "m");
+  RunProgress(std::string who, double d_end, double every_s = 1.0, std::function<std::string(const StepRecord&)> detail = {}, std::string unit = "m");
   void operator()(const RunResult& r);
 
  private:

@@ -11,16 +11,16 @@
 
 #include "dem/dem.hpp"
 #include "model/case.hpp"
+#include "model/method.hpp"
 #include "model/results.hpp"
 #include "prd/prd.hpp"
-#include "model/method.hpp"
 
 namespace masonry {
 
 struct RunOutput {
-  std::string dir;                                 // results.json and steps.csv; empty: nowhere
-  std::function<void(const RunResult&)> on_step;   // after each recorded step (progress lines)
-  double* write_cpu_s = nullptr;  // when given, receives the thread CPU time spent writing (not the solver's)
+  std::string dir;                                // results.json and steps.csv; empty: nowhere
+  std::function<void(const RunResult&)> on_step;  // after each recorded step (progress lines)
+  double* write_cpu_s = nullptr;                  // when given, receives the thread CPU time spent writing (not the solver's)
 };
 
 // At the case's own settings (PrdSettings::from_case, DemSettings::from_case). Input the solver

@@ -24,9 +24,9 @@ std::string title(double x, double y, const std::string& text) {
 }
 
 std::string vline(const Plot& p, double x, const char* colour, const char* dash, const std::string& tip) {
-  return "<line x1=\"" + px(p.X(x)) + "\" x2=\"" + px(p.X(x)) + "\" y1=\"" + px(p.top) + "\" y2=\"" + px(p.top + p.height) + "\" stroke=\"" +
-         colour + "\" stroke-width=\"1.6\"" + (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : std::string()) + "><title>" +
-         xml_escape(tip) + "</title></line>\n";
+  return "<line x1=\"" + px(p.X(x)) + "\" x2=\"" + px(p.X(x)) + "\" y1=\"" + px(p.top) + "\" y2=\"" + px(p.top + p.height) + "\" stroke=\"" + colour +
+         "\" stroke-width=\"1.6\"" + (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : std::string()) + "><title>" + xml_escape(tip) +
+         "</title></line>\n";
 }
 
 }  // namespace
@@ -56,8 +56,8 @@ std::string svg_tornado(const SweepPlan& p, const MethodSensitivity& m) {
   xmax *= 1.08;
   const Plot plot{left, top, W - left - right, ph, 0, xmax, 0, 1};
   std::ostringstream o;
-  o << svg_open(W, H) << title(left, 22, std::string(method_label(m.method)) + ": capacity over each option's range, one at a time")
-    << "<text x=\"" << px(left) << "\" y=\"38\" font-size=\"11\" fill=\"#555\">"
+  o << svg_open(W, H) << title(left, 22, std::string(method_label(m.method)) + ": capacity over each option's range, one at a time") << "<text x=\""
+    << px(left) << "\" y=\"38\" font-size=\"11\" fill=\"#555\">"
     << xml_escape(p.sample ? "the other options at the base point (vertical line: its capacity); bar ends labelled with x"
                            : "the other options at their middle values (vertical line: the capacity there); bar ends labelled with x")
     << "</text>\n"
@@ -66,10 +66,12 @@ std::string svg_tornado(const SweepPlan& p, const MethodSensitivity& m) {
     const Bar& b = bars[i];
     const double y = top + row * double(i) + 6, h = row - 12;
     const double x0 = plot.X(b.lo), x1 = std::max(plot.X(b.hi), x0 + 2);
-    o << "<text x=\"" << px(left - 8) << "\" y=\"" << px(y + h / 2 + 4) << "\" font-size=\"12\" text-anchor=\"end\">" << xml_escape(b.ps->key) << "</text>\n"
+    o << "<text x=\"" << px(left - 8) << "\" y=\"" << px(y + h / 2 + 4) << "\" font-size=\"12\" text-anchor=\"end\">" << xml_escape(b.ps->key)
+      << "</text>\n"
       << "<rect x=\"" << px(x0) << "\" y=\"" << px(y) << "\" width=\"" << px(x1 - x0) << "\" height=\"" << px(h) << "\" fill=\"" << series_color(0)
       << "\" fill-opacity=\"0.75\"><title>" << xml_escape(b.ps->key) << ": " << fmt::g(b.lo, 4) << " m at " << v4(b.x_lo) << ", " << fmt::g(b.hi, 4)
-      << " m at " << v4(b.x_hi) << "</title></rect>\n"
+      << " m at " << v4(b.x_hi)
+      << "</title></rect>\n"
       // The low end's x outside the bar, or inside it where the bar starts at the axis.
       << (x0 - left > 40 ? "<text x=\"" + px(x0 - 3) + "\" y=\"" + px(y + h / 2 + 4) + "\" font-size=\"10\" text-anchor=\"end\" fill=\"#333\">"
                          : "<text x=\"" + px(x0 + 3) + "\" y=\"" + px(y + h / 2 + 4) + "\" font-size=\"10\" fill=\"#fff\">")
@@ -130,8 +132,8 @@ std::string svg_prd_dem(const SweepPlan& p, const SweepSensitivity& s) {
     << svg_axes(plot, linear_ticks(0, vmax, 6, 4), linear_ticks(0, vmax, 6, 4), "PRD capacity (m)", "DEM capacity (m)");
   const auto diag = [&](double f, const char* dash, const std::string& tip) {
     o << "<line x1=\"" << px(plot.X(0)) << "\" y1=\"" << px(plot.Y(0)) << "\" x2=\"" << px(plot.X(vmax / std::max(f, 1.0))) << "\" y2=\""
-      << px(plot.Y(vmax * std::min(f, 1.0))) << "\" stroke=\"#666\" stroke-width=\"1.2\"" << (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : "")
-      << "><title>" << xml_escape(tip) << "</title></line>\n";
+      << px(plot.Y(vmax * std::min(f, 1.0))) << "\" stroke=\"#666\" stroke-width=\"1.2\""
+      << (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : "") << "><title>" << xml_escape(tip) << "</title></line>\n";
   };
   diag(1, "", "DEM = PRD");
   diag(1 + p.tolerance, "4,3", "DEM = PRD x (1 + tolerance)");

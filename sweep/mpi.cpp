@@ -47,9 +47,7 @@ void broadcast(std::string& s) {
   MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
 }
 
-void send(const std::string& s, int tag) {
-  MPI_Send(s.data(), static_cast<int>(s.size()), MPI_CHAR, 0, tag, MPI_COMM_WORLD);
-}
+void send(const std::string& s, int tag) { MPI_Send(s.data(), static_cast<int>(s.size()), MPI_CHAR, 0, tag, MPI_COMM_WORLD); }
 
 }  // namespace
 
@@ -68,8 +66,7 @@ int run_sweep_mpi(const std::string& spec_path, const SweepOptions& o) {
     try {
       const SweepInput in = read_sweep_input(spec_path);
       pr = sweep_detail::prepare(in, o);
-      msg = json{{"spec", in.spec_text}, {"spec_source", in.spec_source}, {"case", in.case_text}, {"case_source", in.case_source},
-                 {"todo", pr.todo}}
+      msg = json{{"spec", in.spec_text}, {"spec_source", in.spec_source}, {"case", in.case_text}, {"case_source", in.case_source}, {"todo", pr.todo}}
                 .dump();
     } catch (const std::exception& e) {
       msg = json{{"error", e.what()}}.dump();
@@ -102,8 +99,8 @@ int run_sweep_mpi(const std::string& spec_path, const SweepOptions& o) {
     return 0;
   }
   try {
-    sweep_detail::Recorder record(pr, o, mpi.size,
-                                  std::string(mpi.size == 1 ? "MPI rank" : "MPI ranks") + (jobs > 1 ? " x " + std::to_string(jobs) + " threads" : ""));
+    sweep_detail::Recorder record(
+        pr, o, mpi.size, std::string(mpi.size == 1 ? "MPI rank" : "MPI ranks") + (jobs > 1 ? " x " + std::to_string(jobs) + " threads" : ""));
     int finished_ranks = 0;
     // Rows from other ranks, taken whenever this rank is between its own rows. Iprobe and a short
     // sleep rather than a blocking receive, which in Open MPI spins and would take a core from

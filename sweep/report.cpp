@@ -7,8 +7,8 @@
 #include <limits>
 #include <sstream>
 
-#include "model/version.hpp"
 #include "model/options.hpp"
+#include "model/version.hpp"
 #include "report/document.hpp"
 #include "report/escape.hpp"
 #include "report/format.hpp"
@@ -86,14 +86,17 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
   c.title = "Sweep: " + p.name;
   int prd = 0;
   for (const SweepRun& r : p.runs) prd += r.method == Method::prd;
-  c.lead = "Case " + p.base.name + " (sweep file " + p.source + ", plan " + p.hash + "): " + std::to_string(p.runs.size()) + " runs (" +
-           std::to_string(prd) + " PRD, " + std::to_string(p.runs.size() - prd) + " DEM), " + std::to_string(s.finished) + " finished, " +
-           std::to_string(s.errors) + " without a located capacity (failed, or a DEM hold undecided). Capacity: the last stable d (m); difference: (DEM - PRD) / PRD; tolerance " +
-           fmt::g(p.tolerance * 100) + "%.";
+  c.lead =
+      "Case " + p.base.name + " (sweep file " + p.source + ", plan " + p.hash + "): " + std::to_string(p.runs.size()) + " runs (" +
+      std::to_string(prd) + " PRD, " + std::to_string(p.runs.size() - prd) + " DEM), " + std::to_string(s.finished) + " finished, " +
+      std::to_string(s.errors) +
+      " without a located capacity (failed, or a DEM hold undecided). Capacity: the last stable d (m); difference: (DEM - PRD) / PRD; tolerance " +
+      fmt::g(p.tolerance * 100) + "%.";
   c.has_figure = !s.x.empty() && !s.curves.empty();
   const bool dem = any_dem(p);
   if (friction_x(s) && dem) {
-    c.boundaries.head = {"curve", "PRD capacity (m)", "PRD: sliding below (deg)", "DEM and PRD differ by more than " + fmt::g(p.tolerance * 100) + "% up to (deg)"};
+    c.boundaries.head = {"curve", "PRD capacity (m)", "PRD: sliding below (deg)",
+                         "DEM and PRD differ by more than " + fmt::g(p.tolerance * 100) + "% up to (deg)"};
     for (const SweepCurve& cv : s.curves) {
       const SweepRow* pr = curve_prd(p, t, cv);
       std::string b = cv.boundary ? fmt::g(*cv.boundary, 6) : "nowhere";
@@ -103,13 +106,16 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
       if (cv.boundary)
         c.findings.push_back(curve_label(cv, dem) + ": the DEM capacity differs from the PRD's by more than " + fmt::g(p.tolerance * 100) +
                              "% at friction angles up to " + fmt::g(*cv.boundary, 6) + " deg" +
-                             (pr && pr->required_friction_angle ? "; the PRD's sliding check predicts sliding below " + fmt::g(*pr->required_friction_angle, 4) + " deg." : "."));
+                             (pr && pr->required_friction_angle
+                                  ? "; the PRD's sliding check predicts sliding below " + fmt::g(*pr->required_friction_angle, 4) + " deg."
+                                  : "."));
     }
   }
   c.runs.head = {"run", "method"};
   if (p.sample) c.runs.head.push_back("sample");
   for (const std::string& k : p.keys) c.runs.head.push_back(k);
-  for (const char* h : {"capacity (m)", "stopped", "difference from PRD", "PRD: sliding below (deg)", "time (s)", "message"}) c.runs.head.push_back(h);
+  for (const char* h : {"capacity (m)", "stopped", "difference from PRD", "PRD: sliding below (deg)", "time (s)", "message"})
+    c.runs.head.push_back(h);
   for (const SweepRun& run : p.runs) {
     std::vector<std::string> r = {std::to_string(run.index), method_name(run.method)};
     if (p.sample) r.push_back(point_text(run));
@@ -229,15 +235,14 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
         pts = px(X(xlo)) + "," + px(Y(pr->capacity)) + " " + px(X(xhi)) + "," + px(Y(pr->capacity));
       } else {
         for (int i : c.runs)
-          if (const SweepRow* q = row_at(t, p.runs[i].prd); q && located(*q))
-            pts += px(X(x_of(p, s, i))) + "," + px(Y(q->capacity)) + " ";
+          if (const SweepRow* q = row_at(t, p.runs[i].prd); q && located(*q)) pts += px(X(x_of(p, s, i))) + "," + px(Y(q->capacity)) + " ";
       }
       if (!pts.empty())
         o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"1.8\" stroke-dasharray=\"8,5\" points=\"" << pts
           << "\"><title>PRD capacity</title></polyline>\n";
       if (fx && pr && pr->required_friction_angle)
-        o << "<line x1=\"" << px(X(*pr->required_friction_angle)) << "\" x2=\"" << px(X(*pr->required_friction_angle)) << "\" y1=\""
-          << px(top) << "\" y2=\"" << px(top + ph) << "\" stroke=\"" << col << "\" stroke-width=\"1.6\" stroke-dasharray=\"2,3\"><title>PRD: sliding below "
+        o << "<line x1=\"" << px(X(*pr->required_friction_angle)) << "\" x2=\"" << px(X(*pr->required_friction_angle)) << "\" y1=\"" << px(top)
+          << "\" y2=\"" << px(top + ph) << "\" stroke=\"" << col << "\" stroke-width=\"1.6\" stroke-dasharray=\"2,3\"><title>PRD: sliding below "
           << fmt::g(*pr->required_friction_angle, 4) << " deg</title></line>\n";
       if (c.boundary)
         o << "<line x1=\"" << px(X(*c.boundary)) << "\" x2=\"" << px(X(*c.boundary)) << "\" y1=\"" << px(top) << "\" y2=\"" << px(top + ph)
@@ -261,9 +266,9 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
       << px(lx + 34) << "\" y=\"" << px(ly + 4) << "\">" << xml_escape(curve_label(s.curves[ci], dem)) << "</text>\n";
   ly += 8;
   const auto style = [&](const char* dash, const std::string& text) {
-    o << "<line x1=\"" << px(lx) << "\" x2=\"" << px(lx + 28) << "\" y1=\"" << px(ly) << "\" y2=\"" << px(ly) << "\" stroke=\"#333\" stroke-width=\"1.8\""
-      << (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : std::string()) << "/><text x=\"" << px(lx + 34) << "\" y=\"" << px(ly + 4)
-      << "\">" << xml_escape(text) << "</text>\n";
+    o << "<line x1=\"" << px(lx) << "\" x2=\"" << px(lx + 28) << "\" y1=\"" << px(ly) << "\" y2=\"" << px(ly)
+      << "\" stroke=\"#333\" stroke-width=\"1.8\"" << (*dash ? std::string(" stroke-dasharray=\"") + dash + "\"" : std::string()) << "/><text x=\""
+      << px(lx + 34) << "\" y=\"" << px(ly + 4) << "\">" << xml_escape(text) << "</text>\n";
     ly += 18;
   };
   bool predicted = false, bounded = false;
@@ -344,10 +349,12 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
       for (size_t q = 0; q < m.nearest.size(); ++q)
         near += (near.empty() ? "" : "; ") + std::to_string(m.percentiles[q].first) + "th: sample " + std::to_string(m.nearest[q].sample) + " (" +
                 fmt::g(m.nearest[q].capacity, 4) + " m)";
-      if (!near.empty()) d.paragraph({"Percentiles: linear interpolation between the sorted capacities (numpy's default). The samples nearest them: " + near + "."});
+      if (!near.empty())
+        d.paragraph({"Percentiles: linear interpolation between the sorted capacities (numpy's default). The samples nearest them: " + near + "."});
     }
     Table el;
-    el.head = {"option", "elasticity", "standard error", "runs", sens.sampled ? "Spearman" : "", "one at a time: capacity (m)", "along the line", "capacity 0 at"};
+    el.head = {"option",         "elasticity",   "standard error", "runs", sens.sampled ? "Spearman" : "", "one at a time: capacity (m)",
+               "along the line", "capacity 0 at"};
     if (!sens.sampled) el.head.erase(el.head.begin() + 4);
     std::string how;
     for (const ParameterSensitivity& ps : m.parameters) {
@@ -384,7 +391,8 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
                    "; runs with capacity 0 have no logarithm and are left out of it" +
                    (sens.sampled ? " (the Spearman rank correlation of x and the capacity, over every located sample, keeps them)" : "") +
                    ". One at a time: the least and largest capacity along the option's line, and the x where they occur."});
-    if (const std::string svg = svg_tornado(p, m); !svg.empty()) d.figure("figures/tornado-" + std::string(method_name(m.method)) + ".svg", M + ": one-at-a-time ranges", svg);
+    if (const std::string svg = svg_tornado(p, m); !svg.empty())
+      d.figure("figures/tornado-" + std::string(method_name(m.method)) + ".svg", M + ": one-at-a-time ranges", svg);
     if (const std::string svg = svg_histogram(p, t, m); !svg.empty())
       d.figure("figures/histogram-" + std::string(method_name(m.method)) + ".svg", M + ": the sampled capacities", svg);
     if (!m.mechanisms.empty()) {
@@ -473,7 +481,8 @@ void write_sweep_outputs(const std::string& dir, const SweepPlan& p, const Sweep
   if (!s.x.empty() && !s.curves.empty()) write_file_atomic(dir + "/figures/capacity.svg", svg_sweep(p, t, s));
   for (const MethodSensitivity& m : sens.methods) {
     if (const std::string svg = svg_tornado(p, m); !svg.empty()) write_file_atomic(dir + "/figures/tornado-" + method_name(m.method) + ".svg", svg);
-    if (const std::string svg = svg_histogram(p, t, m); !svg.empty()) write_file_atomic(dir + "/figures/histogram-" + method_name(m.method) + ".svg", svg);
+    if (const std::string svg = svg_histogram(p, t, m); !svg.empty())
+      write_file_atomic(dir + "/figures/histogram-" + method_name(m.method) + ".svg", svg);
   }
   if (const std::string svg = svg_prd_dem(p, sens); !svg.empty()) write_file_atomic(dir + "/figures/prd-dem.svg", svg);
   write_file_atomic(dir + "/report.md", sweep_markdown(p, t, s, command));

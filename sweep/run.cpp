@@ -1,4 +1,6 @@
 // Running a sweep on this machine: one run, the thread pool, resuming the table.
+#include "runs/run.hpp"
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -12,7 +14,6 @@
 #include <thread>
 
 #include "model/options.hpp"
-#include "runs/run.hpp"
 #include "sweep/runner.hpp"
 
 namespace masonry {
@@ -84,9 +85,8 @@ Recorder::Recorder(Prepared& pr, const SweepOptions& o, int workers, const std::
   if (o_.quiet) return;
   int prd = 0;
   for (const SweepRun& r : pr.plan.runs) prd += r.method == Method::prd;
-  std::fprintf(stderr, "sweep: %s: %zu runs (%d PRD, %zu DEM); %zu in %s already, %zu to run on %d %s\n", pr.plan.name.c_str(),
-               pr.plan.runs.size(), prd, pr.plan.runs.size() - prd, pr.plan.runs.size() - pr.todo.size(), pr.csv_path.c_str(),
-               pr.todo.size(), workers, where.c_str());
+  std::fprintf(stderr, "sweep: %s: %zu runs (%d PRD, %zu DEM); %zu in %s already, %zu to run on %d %s\n", pr.plan.name.c_str(), pr.plan.runs.size(),
+               prd, pr.plan.runs.size() - prd, pr.plan.runs.size() - pr.todo.size(), pr.csv_path.c_str(), pr.todo.size(), workers, where.c_str());
   if (const std::string note = prd_ignores_note(pr.plan); !note.empty()) std::fprintf(stderr, "sweep: %s\n", note.c_str());
 }
 
@@ -110,11 +110,14 @@ void Recorder::operator()(const SweepRow& r) {
   const SweepRun& run = pr_.plan.runs[r.index];
   const std::string label = run_label(pr_.plan, run);
   char b[96];
-  if (r.status == RunStatus::error) std::snprintf(b, sizeof b, "error after %.3g s", r.time_s);
-  else std::snprintf(b, sizeof b, "%s, capacity %.6g m in %.3g s", status_name(r.status), r.capacity, r.time_s);
+  if (r.status == RunStatus::error)
+    std::snprintf(b, sizeof b, "error after %.3g s", r.time_s);
+  else
+    std::snprintf(b, sizeof b, "%s, capacity %.6g m in %.3g s", status_name(r.status), r.capacity, r.time_s);
   std::cerr << progress_.line(done_, "run " + std::to_string(r.index) + " " + method_name(r.method) + " (" + label + "): " + b +
                                          (r.status == RunStatus::error ? ": " + r.message : std::string()))
-            << "\n" << std::flush;
+            << "\n"
+            << std::flush;
 }
 
 int Recorder::finish() {
@@ -122,12 +125,11 @@ int Recorder::finish() {
   write_sweep_outputs(o_.out_dir, pr_.plan, pr_.table, o_.command);
   const SweepSummary s = summarize(pr_.plan, pr_.table);
   if (!o_.quiet) {
-    std::fprintf(stderr, "sweep: %d rows, %d failed; table %s, report %s/report.html and %s/report.md\n", s.finished, s.errors,
-                 pr_.csv_path.c_str(), o_.out_dir.c_str(), o_.out_dir.c_str());
+    std::fprintf(stderr, "sweep: %d rows, %d failed; table %s, report %s/report.html and %s/report.md\n", s.finished, s.errors, pr_.csv_path.c_str(),
+                 o_.out_dir.c_str(), o_.out_dir.c_str());
     for (const SweepCurve& c : s.curves)
       if (c.boundary)
-        std::fprintf(stderr, "sweep: DEM and PRD differ by more than %g%% up to a friction angle of %g deg\n", pr_.plan.tolerance * 100,
-                     *c.boundary);
+        std::fprintf(stderr, "sweep: DEM and PRD differ by more than %g%% up to a friction angle of %g deg\n", pr_.plan.tolerance * 100, *c.boundary);
   }
   return s.errors > 0 ? 1 : 0;
 }

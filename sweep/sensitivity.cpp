@@ -331,7 +331,9 @@ SweepSensitivity sensitivity(const SweepPlan& p, const SweepTable& t) {
 ojson sensitivity_json(const SweepPlan& p, const SweepSensitivity& s) {
   ojson j;
   j["format"] = "masonry-sensitivity/1";
-  j["units"] = "SI: capacity in m (the last stable d); elasticities d ln(capacity) / d ln(x), dimensionless (d ln(capacity) / dx, 1/unit of x, where log is false)";
+  j["units"] =
+      "SI: capacity in m (the last stable d); elasticities d ln(capacity) / d ln(x), dimensionless (d ln(capacity) / dx, 1/unit of x, where log is "
+      "false)";
   j["name"] = p.name;
   j["spec"] = p.source;
   j["plan"] = p.hash;
@@ -339,12 +341,8 @@ ojson sensitivity_json(const SweepPlan& p, const SweepSensitivity& s) {
   if (p.sample) {
     ojson ranges = ojson::object();
     for (const SweepRange& g : p.sample->ranges) ranges[g.key] = {g.lo, g.hi};
-    j["design"] = {{"kind", "latin-hypercube"},
-                   {"count", p.sample->count},
-                   {"seed", p.sample->seed},
-                   {"ranges", ranges},
-                   {"one_at_a_time", p.sample->levels},
-                   {"only", p.sample->only}};
+    j["design"] = {{"kind", "latin-hypercube"}, {"count", p.sample->count},          {"seed", p.sample->seed},
+                   {"ranges", ranges},          {"one_at_a_time", p.sample->levels}, {"only", p.sample->only}};
   } else {
     j["design"] = {{"kind", "grid"}};
   }

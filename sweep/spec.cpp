@@ -114,7 +114,8 @@ void parse_case_field(const SpecReader& r, const ojson& doc, SweepSpec& s) {
   r.only(c, "case", {"generator", "parameters"});
   s.generator = r.string(c, "case", "generator", "");
   if (s.generator.empty()) r.fail("case", "field 'generator' must name a case generator (masonry cases --list)");
-  if (!find_case_generator(s.generator)) r.fail("case", "field 'generator': no case generator '" + printable(s.generator) + "' (masonry cases --list)");
+  if (!find_case_generator(s.generator))
+    r.fail("case", "field 'generator': no case generator '" + printable(s.generator) + "' (masonry cases --list)");
   if (c.contains("parameters")) {
     if (!c["parameters"].is_object()) r.fail("case", "field 'parameters' must be an object {NAME: value} (masonry cases " + s.generator + " --help)");
     s.parameters = json::parse(c["parameters"].dump());
@@ -281,10 +282,8 @@ std::string parameter_of(const std::string& key) { return key.substr(std::char_t
 
 // The generator parameter a "generator.NAME" key names; refuses the key (naming `where`) when
 // the case is no generator call or the generator has no such parameter.
-const GeneratorParameter& generator_parameter(const SpecReader& r, const std::string& where, const std::string& generator,
-                                              const std::string& key) {
-  if (generator.empty())
-    r.fail(where, "'" + key + "' is a generator parameter, but the case is not a generator call {\"generator\": NAME, ...}");
+const GeneratorParameter& generator_parameter(const SpecReader& r, const std::string& where, const std::string& generator, const std::string& key) {
+  if (generator.empty()) r.fail(where, "'" + key + "' is a generator parameter, but the case is not a generator call {\"generator\": NAME, ...}");
   const CaseGenerator& g = *find_case_generator(generator);
   const int k = parameter_index(g, parameter_of(key));
   if (k < 0) r.fail(where, "generator " + generator + " has no parameter '" + printable(parameter_of(key)) + "' (it has " + parameter_names(g) + ")");
@@ -348,8 +347,7 @@ std::vector<DesignPoint> grid_points(const SpecReader& r, const SweepSpec& spec)
 }
 
 // The sampled design: the base point, each range's one-at-a-time line, the Latin hypercube.
-std::vector<DesignPoint> sampled_points(const SpecReader& r, const SweepSample& s, const std::vector<json>& base,
-                                        const std::vector<bool>& integer) {
+std::vector<DesignPoint> sampled_points(const SpecReader& r, const SweepSample& s, const std::vector<json>& base, const std::vector<bool>& integer) {
   const size_t nk = s.ranges.size();
   // x in [0, 1] to a value of key k: whole numbers for an integer parameter, each equally likely.
   const auto value = [&](size_t k, double u) -> json {

@@ -53,17 +53,17 @@ struct SweepSample {
 inline constexpr const char* kGeneratorPrefix = "generator.";
 
 struct SweepSpec {
-  std::string source;       // the sweep file, for messages
-  std::string name;         // title (default: the case's name)
+  std::string source;  // the sweep file, for messages
+  std::string name;    // title (default: the case's name)
   std::string description;
-  std::string case_ref;     // as written: a path (ending in .json) or a standard case name; "" for a generator
-  std::string generator;    // a generator call {"generator": NAME, "parameters": {...}}: its name
+  std::string case_ref;                                  // as written: a path (ending in .json) or a standard case name; "" for a generator
+  std::string generator;                                 // a generator call {"generator": NAME, "parameters": {...}}: its name
   nlohmann::json parameters = nlohmann::json::object();  // and its parameters
-  std::vector<Method> methods;  // at least one
-  std::vector<SweepAxis> vary;       // a grid: at least one (none with `sample`)
+  std::vector<Method> methods;                           // at least one
+  std::vector<SweepAxis> vary;                           // a grid: at least one (none with `sample`)
   std::optional<SweepSample> sample;
   std::vector<std::pair<std::string, nlohmann::json>> set;  // options fixed for every run
-  double tolerance = 0.05;  // |diff_prd| above this is a disagreement (report only)
+  double tolerance = 0.05;                                  // |diff_prd| above this is a disagreement (report only)
 };
 
 // A Latin hypercube of n points in [0, 1)^k, points[i][j] (sweep/design.cpp): each column j holds
@@ -99,28 +99,28 @@ struct SweepRun {
   std::string id;                      // 16 hex digits: the case, the method, the values (and the sample)
   int prd = -1;                        // DEM run: the PRD run with the same non-DEM values
   SweepPoint point = SweepPoint::grid;
-  int sample = -1;                     // SweepPoint::sample: its number in the design
-  int line = -1;                       // SweepPoint::one_at_a_time: the key (index) it varies
+  int sample = -1;  // SweepPoint::sample: its number in the design
+  int line = -1;    // SweepPoint::one_at_a_time: the key (index) it varies
 };
 
 struct SweepPlan {
   std::string source;  // the sweep file
   std::string name, description;
-  Case base;           // the case with the spec's "set" applied
-  std::string generator;             // a generator call: its name ("" otherwise)
-  nlohmann::json parameters;         // and its parameters with the "set" ones (generator.NAME)
+  Case base;                                                    // the case with the spec's "set" applied
+  std::string generator;                                        // a generator call: its name ("" otherwise)
+  nlohmann::json parameters;                                    // and its parameters with the "set" ones (generator.NAME)
   std::vector<std::pair<std::string, nlohmann::json>> options;  // "set"'s case options, applied after the generator
   std::vector<Method> methods;
-  std::vector<std::string> keys;  // varied or sampled options, in the spec's order
+  std::vector<std::string> keys;            // varied or sampled options, in the spec's order
   std::vector<nlohmann::json> base_values;  // per key: its value in the base case (null: none)
-  std::optional<SweepSample> sample;  // a sampled sweep
+  std::optional<SweepSample> sample;        // a sampled sweep
   // A PRD-only sweep: the keys PRD ignores (DEM options), which give it no other run.
   std::vector<std::string> prd_ignores;
   // PRD runs carry the sliding check (the friction angle report's prediction) unless "set" says
   // prd.sliding_check: it costs 25 times the run itself on the cathedral.
   bool sliding_check = true;
-  std::vector<SweepRun> runs;     // PRD runs first, then DEM; each in factorial order
-  std::string hash;               // 16 hex digits over the base case and the runs
+  std::vector<SweepRun> runs;  // PRD runs first, then DEM; each in factorial order
+  std::string hash;            // 16 hex digits over the base case and the runs
   double tolerance = 0.05;
 };
 
@@ -240,8 +240,8 @@ struct ParameterSensitivity {
 struct MechanismShare {
   std::string hinges;  // SweepRow::hinges; "" for none (a run that ends standing)
   int count = 0;
-  double share = 0;             // of the counted rows
-  double median_capacity = 0;   // m
+  double share = 0;            // of the counted rows
+  double median_capacity = 0;  // m
 };
 struct NearestSample {
   int run = -1, sample = -1;
@@ -249,14 +249,14 @@ struct NearestSample {
 };
 struct MethodSensitivity {
   Method method = Method::prd;
-  int counted = 0;  // the rows it is computed from: the samples (sampled), every run (grid)
+  int counted = 0;            // the rows it is computed from: the samples (sampled), every run (grid)
   int located = 0, zero = 0;  // of them: with a located capacity; of those, capacity 0
   // Sampled: the 5th, 50th and 95th percentiles of the samples' capacities (linear
   // interpolation between order statistics), and the sample nearest each.
   std::vector<std::pair<int, double>> percentiles;
   std::vector<NearestSample> nearest;
   double min = 0, max = 0;
-  std::optional<double> r2;  // sampled: the log-log regression's coefficient of determination
+  std::optional<double> r2;                // sampled: the log-log regression's coefficient of determination
   std::vector<MechanismShare> mechanisms;  // most frequent first
   std::vector<MechanismShare> members;     // the same grouped by members_of (its `hinges`: the members)
   // Each member (or pair) of members_of alone: the rows whose hinges at collapse include it.
@@ -297,11 +297,11 @@ void write_sweep_outputs(const std::string& dir, const SweepPlan& p, const Sweep
 
 struct SweepOptions {
   std::string out_dir;
-  int jobs = 0;          // threads; 0: the hardware's (under MPI: 1 per rank)
-  bool restart = false;  // discard an existing sweep.csv instead of resuming it
-  bool quiet = false;    // no progress lines
+  int jobs = 0;            // threads; 0: the hardware's (under MPI: 1 per rank)
+  bool restart = false;    // discard an existing sweep.csv instead of resuming it
+  bool quiet = false;      // no progress lines
   bool keep_runs = false;  // every run's case.json, results.json and steps.csv in DIR/runs/ID/
-  std::string command;   // shown in the report
+  std::string command;     // shown in the report
 };
 
 // Runs the sweep on this machine: resumes DIR/sweep.csv, runs the missing runs (PRD on the

@@ -85,8 +85,9 @@ const SweepRow* row_at(const SweepTable& t, int i) { return i >= 0 && i < int(t.
 using sweep_detail::row_at;
 
 json row_to_json(const SweepRow& r) {
-  json j = {{"run", r.index}, {"id", r.id}, {"method", method_name(r.method)}, {"stopped", status_name(r.status)},
-            {"capacity", r.capacity}, {"time_s", r.time_s}, {"message", r.message}};
+  json j = {
+      {"run", r.index},     {"id", r.id},          {"method", method_name(r.method)}, {"stopped", status_name(r.status)}, {"capacity", r.capacity},
+      {"time_s", r.time_s}, {"message", r.message}};
   if (r.required_friction_angle) j["required_friction_angle"] = *r.required_friction_angle;
   if (!r.hinges.empty()) j["hinges"] = r.hinges;
   if (r.files) j["files"] = {{"case", r.files->case_json}, {"results", r.files->results_json}, {"steps", r.files->steps_csv}};
@@ -182,8 +183,9 @@ SweepTable read_sweep_csv(const SweepPlan& p, const std::string& text, const std
     if (f.size() != tail + std::size(kTail)) continue;
     auto it = by_id.find(f[1]);
     if (it == by_id.end())
-      throw SweepError(source + ":" + std::to_string(line_no) + ": run id " + f[1] +
-                       " is not a run of this sweep (the sweep file or the case changed since): use --restart to discard the table, or another --out");
+      throw SweepError(
+          source + ":" + std::to_string(line_no) + ": run id " + f[1] +
+          " is not a run of this sweep (the sweep file or the case changed since): use --restart to discard the table, or another --out");
     const SweepRun& run = p.runs[it->second];
     // A line whose fields do not all read back is incomplete: its run is done again.
     bool ok = f[2] == method_name(run.method) && (h == 3 || f[3] == point_text(run));

@@ -29,11 +29,77 @@ class Mutator {
   // bytes that are not UTF-8, a very long word.
   const std::vector<std::string>& values() const {
     static const std::vector<std::string> v = {
-        "", "nan", "-nan", "inf", "-inf", "1e309", "-1e309", "1e308", "-1e308", "1e-320", "99999999999", "2147483647", "-2147483648",
-        "4294967296", "32768", "-32769", "-1", "0", "1", "3", "1,5", "0.4  junk", "abc", "XYZ", "0x10", "+", "-", ".", "1e", "  7  ",
-        "\t", "1e5", "-1e300", "0.0000001", "SECTION", "ENDSEC", "EOF", "POLYLINE", "VERTEX", "SEQEND", "LWPOLYLINE", "TEXT", "MTEXT",
-        "HEADER", "ENTITIES", "$INSUNITS", "10", "20", "42", "90", "70", "5", "8", "\x1b[31m", "\xff\xfe", "\xc3", "{", "}", "[", "]",
-        "\"", ",", ":", "null", "true", "[]", "{}", "\"x\"", std::string(5000, 'A'), "\"step\": 0.5,", "\"format\": \"x\",",
+        "",
+        "nan",
+        "-nan",
+        "inf",
+        "-inf",
+        "1e309",
+        "-1e309",
+        "1e308",
+        "-1e308",
+        "1e-320",
+        "99999999999",
+        "2147483647",
+        "-2147483648",
+        "4294967296",
+        "32768",
+        "-32769",
+        "-1",
+        "0",
+        "1",
+        "3",
+        "1,5",
+        "0.4  junk",
+        "abc",
+        "XYZ",
+        "0x10",
+        "+",
+        "-",
+        ".",
+        "1e",
+        "  7  ",
+        "\t",
+        "1e5",
+        "-1e300",
+        "0.0000001",
+        "SECTION",
+        "ENDSEC",
+        "EOF",
+        "POLYLINE",
+        "VERTEX",
+        "SEQEND",
+        "LWPOLYLINE",
+        "TEXT",
+        "MTEXT",
+        "HEADER",
+        "ENTITIES",
+        "$INSUNITS",
+        "10",
+        "20",
+        "42",
+        "90",
+        "70",
+        "5",
+        "8",
+        "\x1b[31m",
+        "\xff\xfe",
+        "\xc3",
+        "{",
+        "}",
+        "[",
+        "]",
+        "\"",
+        ",",
+        ":",
+        "null",
+        "true",
+        "[]",
+        "{}",
+        "\"x\"",
+        std::string(5000, 'A'),
+        "\"step\": 0.5,",
+        "\"format\": \"x\",",
     };
     return v;
   }
@@ -43,8 +109,10 @@ class Mutator {
   static std::vector<std::string> lines(const std::string& t) {
     std::vector<std::string> out(1);
     for (char ch : t) {
-      if (ch == '\n') out.emplace_back();
-      else out.back() += ch;
+      if (ch == '\n')
+        out.emplace_back();
+      else
+        out.back() += ch;
     }
     return out;
   }

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "model/io.hpp"
 #include "model/fields.hpp"
+#include "model/io.hpp"
 #include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
@@ -123,8 +123,7 @@ void check_key(const std::string& method, const std::string& key, const std::str
   fail(source, where, "'" + key + "' is not a " + method + " setting (expected " + method + ".* or motion.*)");
 }
 
-std::vector<CaseOption> parse_options(const ojson& j, const std::string& method, const std::string& source,
-                                      const std::string& where) {
+std::vector<CaseOption> parse_options(const ojson& j, const std::string& method, const std::string& source, const std::string& where) {
   if (!j.is_object() || j.empty()) fail(source, where, "must be a non-empty object of option: value");
   std::vector<CaseOption> out;
   for (auto it = j.begin(); it != j.end(); ++it) {
@@ -146,8 +145,7 @@ MethodPlan parse_method_plan(const ojson& j, Method which, const std::string& so
     if (k == "comment") {
       continue;
     } else if (k == "repeat") {
-      if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1000)
-        fail(source, where, "must be a whole number from 1 to 1000");
+      if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 1000) fail(source, where, "must be a whole number from 1 to 1000");
       m.repeat = v.get<int>();
     } else if (k == "baseline") {
       if (!v.is_boolean()) fail(source, where, "must be true or false");
@@ -213,8 +211,8 @@ std::string options_text(const std::vector<CaseOption>& o, const char* sep) {
 std::string file_safe(const std::string& s) {
   std::string o;
   for (char ch : s) {
-    const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '.' || ch == '_' ||
-                    ch == '=' || ch == '+' || ch == '-';
+    const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '.' || ch == '_' || ch == '=' ||
+                    ch == '+' || ch == '-';
     o += ok ? ch : '_';
   }
   return o;
@@ -309,8 +307,7 @@ json case_option(const Case& c, const std::string& key) {
 
 CaseOption parse_assignment(const std::string& text, const std::string& what) {
   const size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-    throw std::runtime_error(what + ": '" + text + "' is not KEY=VALUE");
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) throw std::runtime_error(what + ": '" + text + "' is not KEY=VALUE");
   CaseOption o{text.substr(0, eq), nullptr};
   const std::string v = text.substr(eq + 1);
   try {
@@ -321,8 +318,8 @@ CaseOption parse_assignment(const std::string& text, const std::string& what) {
   return o;
 }
 
-std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const std::vector<Method>& methods,
-                                    const std::string& plan_source, const std::vector<Method>& reused_references) {
+std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const std::vector<Method>& methods, const std::string& plan_source,
+                                    const std::vector<Method>& reused_references) {
   const json doc = json::parse(case_to_json(base));
   const double travel = base.motion.step * base.motion.max_steps;
   // Relative values to numbers, and the path length kept when only the step changes.
@@ -334,8 +331,8 @@ std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const st
       if (const auto f = relative_factor(o.value)) {
         const json* b = walk(doc, o.key);
         if (!b || !b->is_number())
-          throw std::runtime_error(plan_source + ": " + where + "." + o.key + ": the case has no number for '" + o.key +
-                                   "' to scale by " + o.value.get<std::string>());
+          throw std::runtime_error(plan_source + ": " + where + "." + o.key + ": the case has no number for '" + o.key + "' to scale by " +
+                                   o.value.get<std::string>());
         // 12 significant digits: 1e-5 x 0.1 is 1e-6, not 1.0000000000000002e-06.
         char b12[40];
         std::snprintf(b12, sizeof b12, "%.12g", b->get<double>() * *f);
@@ -404,8 +401,7 @@ std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const st
         if (!b.is_null() && one.front().value == b) continue;
         add({which, key, "", {{key, values[i]}}}, "", false, false, method + ".vary." + key + "[" + std::to_string(i) + "]");
       }
-    for (size_t i = 0; i < m.combined.size(); ++i)
-      add(m.combined[i], "", false, false, method + ".combined[" + std::to_string(i) + "]");
+    for (size_t i = 0; i < m.combined.size(); ++i) add(m.combined[i], "", false, false, method + ".combined[" + std::to_string(i) + "]");
   }
   return runs;
 }

@@ -107,8 +107,17 @@ Table method_table(const Tradeoff& t, Method method) {
   const auto on = [](const Front& f, size_t i) { return std::find(f.front.begin(), f.front.end(), i) != f.front.end(); };
   Table tb;
   const std::string unit = std::string(1, 'm').append(t.d_unit);  // d x 1000: mm, or mrad for a turning support
-  tb.head = {"setting", "options", "stopped", "capacity (" + unit + ")", "capacity error", "thrust error max / rms (W)",
-             "over d (" + unit + ")", "time (s)", "wall (s)", method == Method::prd ? "LP solves" : "cycles", "Pareto"};
+  tb.head = {"setting",
+             "options",
+             "stopped",
+             "capacity (" + unit + ")",
+             "capacity error",
+             "thrust error max / rms (W)",
+             "over d (" + unit + ")",
+             "time (s)",
+             "wall (s)",
+             method == Method::prd ? "LP solves" : "cycles",
+             "Pareto"};
   // Names, options and status left; numbers right, even where a cell adds a unit or a range.
   tb.align.assign(tb.head.size(), Align::right);
   for (int k = 0; k < 3; ++k) tb.align[k] = Align::left;
@@ -125,9 +134,8 @@ Table method_table(const Tradeoff& t, Method method) {
     if (on(fc, i)) front += "capacity";
     if (on(ft, i)) front += std::string(front.empty() ? "" : ", ") + "thrust";
     tb.rows.push_back({setting, opts, stopped, mm(r.capacity), pct_signed(r.capacity_err),
-                       std::isfinite(r.thrust_max_err) ? weight(r.thrust_max_err) + " / " + weight(r.thrust_rms_err) : "n/a",
-                       mm(r.thrust_range), time,
-                       secs(r.wall_s), std::to_string(method == Method::prd ? r.lp_solves : r.cycles), front.empty() ? "-" : front});
+                       std::isfinite(r.thrust_max_err) ? weight(r.thrust_max_err) + " / " + weight(r.thrust_rms_err) : "n/a", mm(r.thrust_range),
+                       time, secs(r.wall_s), std::to_string(method == Method::prd ? r.lp_solves : r.cycles), front.empty() ? "-" : front});
   }
   return tb;
 }
@@ -162,9 +170,9 @@ std::string csv_row(const Row& r) {
   for (const CaseOption& o : r.options) opts += (opts.empty() ? "" : ";") + o.key + "=" + value_text(o.value);
   std::ostringstream o;
   o << method_name(r.method) << "," << q(r.label) << "," << q(r.parameter) << "," << role(r) << "," << q(opts) << "," << status_name(r.status) << ","
-    << g(r.capacity) << "," << g(r.capacity_err) << "," << g(r.thrust_max_err) << "," << g(r.thrust_rms_err) << "," << g(r.thrust_range) << "," << g(r.time_s)
-    << "," << g(r.time_min_s) << "," << g(r.time_max_s) << "," << (r.cpu ? "cpu" : "wall") << "," << g(r.wall_s) << "," << r.repeats << "," << r.lp_solves << "," << r.cycles << ","
-    << (r.reused ? "yes" : "no") << "," << q(r.source) << "," << q(r.message) << "\n";
+    << g(r.capacity) << "," << g(r.capacity_err) << "," << g(r.thrust_max_err) << "," << g(r.thrust_rms_err) << "," << g(r.thrust_range) << ","
+    << g(r.time_s) << "," << g(r.time_min_s) << "," << g(r.time_max_s) << "," << (r.cpu ? "cpu" : "wall") << "," << g(r.wall_s) << "," << r.repeats
+    << "," << r.lp_solves << "," << r.cycles << "," << (r.reused ? "yes" : "no") << "," << q(r.source) << "," << q(r.message) << "\n";
   return o.str();
 }
 
@@ -213,8 +221,8 @@ std::vector<std::string> summary_lines(const Tradeoff& t) {
     if (best) {
       std::string s = M + ": the fastest setting within " + target + " of the reference is " + best->label + " (" + secs(best->time_s) + " s";
       if (!best->reference && std::isfinite(ref_time) && best->time_s > 0)
-        s += ", " + fmt::number(ref_time / best->time_s, "%.3g", ref_time / best->time_s) + " times faster than the reference's " +
-             secs(ref_time) + " s";
+        s += ", " + fmt::number(ref_time / best->time_s, "%.3g", ref_time / best->time_s) + " times faster than the reference's " + secs(ref_time) +
+             " s";
       out.push_back(s + ").");
     } else {
       out.push_back(M + ": no setting is within " + target + " of the reference.");
@@ -280,8 +288,11 @@ ojson tradeoff_json(const Tradeoff& t) {
       for (size_t i : f.front) e["front"].push_back(rows[i].label);
       e["best_buys"] = ojson::array();
       for (const Buy& b : f.buys)
-        e["best_buys"].push_back({{"from", rows[b.from].label}, {"to", rows[b.to].label}, {"error_reduction", json_number(b.gain)},
-                                  {"extra_s", json_number(b.cost_s)}, {"per_s", json_number(b.rate)}});
+        e["best_buys"].push_back({{"from", rows[b.from].label},
+                                  {"to", rows[b.to].label},
+                                  {"error_reduction", json_number(b.gain)},
+                                  {"extra_s", json_number(b.cost_s)},
+                                  {"per_s", json_number(b.rate)}});
       m[k == ErrorKind::capacity ? "capacity" : "thrust"] = e;
     }
     j["pareto"][method_name(method)] = m;
@@ -311,8 +322,8 @@ std::string svg_pareto(const Tradeoff& t, Method method) {
   if (d1 <= d0) d1 = d0 + 1;
   std::ostringstream o;
   o << svg_open(W, H);
-  o << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">" << xml_escape(method_label(method))
-    << " settings on " << xml_escape(t.case_name) << ": run time against error (reference: error 0)</text>\n";
+  o << "<text x=\"" << px(left) << "\" y=\"20\" font-size=\"15\" font-weight=\"bold\">" << xml_escape(method_label(method)) << " settings on "
+    << xml_escape(t.case_name) << ": run time against error (reference: error 0)</text>\n";
   for (int panel = 0; panel < 2; ++panel) {
     const ErrorKind k = panel == 0 ? ErrorKind::capacity : ErrorKind::thrust;
     const Front f = front_of(rows, k);
@@ -372,7 +383,8 @@ std::string svg_pareto(const Tradeoff& t, Method method) {
   }
   const double y = legend_top + 20 * ((params.size() + per_line - 1) / per_line) + 8;
   o << "<circle cx=\"" << px(left + 6) << "\" cy=\"" << px(y - 1) << "\" r=\"8\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.6\"/>"
-    << "<text x=\"" << px(left + 18) << "\" y=\"" << px(y + 3) << "\">Pareto-optimal (no other setting is both faster and more accurate), joined by the red line</text>\n";
+    << "<text x=\"" << px(left + 18) << "\" y=\"" << px(y + 3)
+    << "\">Pareto-optimal (no other setting is both faster and more accurate), joined by the red line</text>\n";
   o << "</g>\n</svg>\n";
   return o.str();
 }

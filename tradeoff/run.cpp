@@ -1,5 +1,7 @@
 // Running the plan: every setting through runs/ (at the settings each method reads from the varied
 // case), the errors against the method's reference through compare_runs, and the Pareto front.
+#include "runs/run.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,7 +11,6 @@
 
 #include "compare/compare.hpp"
 #include "runs/progress.hpp"
-#include "runs/run.hpp"
 #include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
@@ -94,8 +95,7 @@ void set_errors(Row& row, const Case& c, const RunResult* ref, bool ref_ok, cons
 
 }  // namespace
 
-std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs, const RunOptions& o,
-                          const std::function<void(const Row&)>& on_row) {
+std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs, const RunOptions& o, const std::function<void(const Row&)>& on_row) {
   const auto say = [&](const std::string& s) {
     if (o.progress) o.progress(s);
   };
@@ -130,8 +130,7 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
     } else {
       const std::string case_text = case_to_json(p.c);
       bool done = false;
-      if (o.resume && !dir.empty() && read_text((fs::path(dir) / "case.json").string()) == case_text &&
-          fs::exists(fs::path(dir) / "results.json")) {
+      if (o.resume && !dir.empty() && read_text((fs::path(dir) / "case.json").string()) == case_text && fs::exists(fs::path(dir) / "results.json")) {
         try {
           RunResult old = load_results((fs::path(dir) / "results.json").string(), base);
           if (!finished(old, p.c)) say("tradeoff: " + dir + " holds a run that did not finish: running it again");
@@ -162,7 +161,8 @@ std::vector<Row> run_plan(const Case& base, const std::vector<PlannedRun>& runs,
           write_file_atomic((fs::path(dir) / "case.json").string(), case_text);
         }
         for (int k = 0; k < std::max(1, p.repeat); ++k) {
-          say("tradeoff: " + name + " " + row.label + (p.repeat > 1 ? " (" + std::to_string(k + 1) + " of " + std::to_string(p.repeat) + ")" : "") + " ...");
+          say("tradeoff: " + name + " " + row.label + (p.repeat > 1 ? " (" + std::to_string(k + 1) + " of " + std::to_string(p.repeat) + ")" : "") +
+              " ...");
           const double c0 = thread_cpu_s();
           double io = 0;
           r = run_once(p, dir, io);

@@ -35,11 +35,11 @@ struct Setting {
 };
 
 struct MethodPlan {
-  int repeat = 1;         // runs per setting; the time quoted is their median
-  bool baseline = true;   // run the case's own settings (off when a reused reference is the baseline)
-  std::vector<CaseOption> reference;                              // the most accurate setting
+  int repeat = 1;                                                         // runs per setting; the time quoted is their median
+  bool baseline = true;                                                   // run the case's own settings (off when a reused reference is the baseline)
+  std::vector<CaseOption> reference;                                      // the most accurate setting
   std::vector<std::pair<std::string, std::vector<nlohmann::json>>> vary;  // key -> values, in order
-  std::vector<Setting> combined;                                  // label and options
+  std::vector<Setting> combined;                                          // label and options
 };
 
 struct Plan {
@@ -58,8 +58,8 @@ nlohmann::ordered_json plan_to_json(const Plan& p);
 // A setting resolved against a case: relative values turned into numbers, the case with the
 // options applied and validated (so a bad value fails before any run).
 struct PlannedRun {
-  Setting setting;          // options with absolute values
-  std::string id;           // run directory name: method and options, file-name safe
+  Setting setting;  // options with absolute values
+  std::string id;   // run directory name: method and options, file-name safe
   bool reference = false;
   bool baseline = false;
   int repeat = 1;
@@ -74,8 +74,8 @@ struct PlannedRun {
 // case refuses or a relative value of an option the case has no number for.
 // `reused_references`: methods whose reference is a finished run read back (--reference-*): its
 // planned settings are not compared with the others'.
-std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const std::vector<Method>& methods,
-                                    const std::string& plan_source, const std::vector<Method>& reused_references = {});
+std::vector<PlannedRun> expand_plan(const Case& base, const Plan& plan, const std::vector<Method>& methods, const std::string& plan_source,
+                                    const std::vector<Method>& reused_references = {});
 
 // The case's current value of a dotted option (null when absent).
 nlohmann::json case_option(const Case& c, const std::string& key);
@@ -90,12 +90,12 @@ struct Row {
   std::string parameter, label, id;
   std::vector<CaseOption> options;
   bool reference = false, baseline = false;
-  std::string source;     // where the run is (its directory), or the reused run's directory
-  bool reused = false;    // read back (--reference-*, --resume) instead of run here
-  bool given = false;     // the reference is a finished run given with --reference-* (options unknown)
+  std::string source;   // where the run is (its directory), or the reused run's directory
+  bool reused = false;  // read back (--reference-*, --resume) instead of run here
+  bool given = false;   // the reference is a finished run given with --reference-* (options unknown)
   RunStatus status = RunStatus::running;
   bool ok() const { return located(status); }  // its capacity is an answer: a collapse or max_steps
-  std::string message;    // why a run failed
+  std::string message;                         // why a run failed
   int repeats = 0;
   // The time of a setting: the median over the repeats of the CPU time of the solver call,
   // measured here on the calling thread (the solvers are single-threaded), which a busy machine
@@ -104,7 +104,7 @@ struct Row {
   double time_s = 0.0;
   double time_min_s = 0.0, time_max_s = 0.0;
   bool cpu = false;
-  double wall_s = 0.0;    // median of the runs' own timing.total_s (wall time without I/O)
+  double wall_s = 0.0;  // median of the runs' own timing.total_s (wall time without I/O)
   long long lp_solves = 0, cycles = 0;
   int steps = 0;          // records of the run
   double capacity = 0.0;  // m
@@ -130,10 +130,10 @@ std::vector<size_t> pareto_front(const std::vector<ParetoPoint>& points);
 // A step along a Pareto front, from a faster point to the next slower one: error reduction
 // bought per extra second.
 struct Buy {
-  size_t from = 0, to = 0;    // indices into the points
-  double gain = 0.0;          // error(from) - error(to) > 0
-  double cost_s = 0.0;        // time(to) - time(from) > 0
-  double rate = 0.0;          // gain / cost_s
+  size_t from = 0, to = 0;  // indices into the points
+  double gain = 0.0;        // error(from) - error(to) > 0
+  double cost_s = 0.0;      // time(to) - time(from) > 0
+  double rate = 0.0;        // gain / cost_s
 };
 // The steps of a front (as returned by pareto_front), best rate first.
 std::vector<Buy> best_buys(const std::vector<ParetoPoint>& points, const std::vector<size_t>& front);
@@ -144,22 +144,22 @@ std::vector<ParetoPoint> points_of(const std::vector<Row>& rows, ErrorKind kind)
 
 struct Tradeoff {
   std::string case_name;
-  std::string d_unit = "m";            // the path parameter's SI unit (path_unit): "m" or "rad"
-  std::string command;                 // how it was made (shown verbatim, escaped)
-  std::vector<CaseOption> base;        // --set options: the baseline's difference from the case file
+  std::string d_unit = "m";      // the path parameter's SI unit (path_unit): "m" or "rad"
+  std::string command;           // how it was made (shown verbatim, escaped)
+  std::vector<CaseOption> base;  // --set options: the baseline's difference from the case file
   Plan plan;
   std::vector<Method> methods;
-  std::vector<Row> rows;               // in run order; per method the reference first
-  double target_capacity = 0.01;       // "good enough" thresholds for the summary
-  double target_thrust = 0.01;         // W
+  std::vector<Row> rows;          // in run order; per method the reference first
+  double target_capacity = 0.01;  // "good enough" thresholds for the summary
+  double target_thrust = 0.01;    // W
 };
 
 // ---- Running ---------------------------------------------------------------------------------
 
 struct RunOptions {
-  std::string runs_dir;                             // each run's results.json goes to runs_dir/<id>/ ("": not kept)
-  std::map<Method, std::string> reference_dir;  // method -> finished run directory used as its reference
-  bool resume = false;  // reuse runs_dir/<id>/ when it holds a finished run of the same setting
+  std::string runs_dir;                              // each run's results.json goes to runs_dir/<id>/ ("": not kept)
+  std::map<Method, std::string> reference_dir;       // method -> finished run directory used as its reference
+  bool resume = false;                               // reuse runs_dir/<id>/ when it holds a finished run of the same setting
   std::function<void(const std::string&)> progress;  // one line per event (may be empty)
 };
 

@@ -13,7 +13,6 @@
 
 namespace masonry {
 
-
 const char* quantity_name(Quantity q) {
   switch (q) {
     case Quantity::capacity: return "capacity";
@@ -103,11 +102,10 @@ Method method_of(const std::string& s, const Where& w, const std::string& field)
 }
 
 Quantity quantity_of(const std::string& s, const Where& w) {
-  for (Quantity q : {Quantity::capacity, Quantity::least_friction_angle, Quantity::stands, Quantity::threshold,
-                     Quantity::reaction, Quantity::reaction_balance, Quantity::duality_gap})
+  for (Quantity q : {Quantity::capacity, Quantity::least_friction_angle, Quantity::stands, Quantity::threshold, Quantity::reaction,
+                     Quantity::reaction_balance, Quantity::duality_gap})
     if (s == quantity_name(q)) return q;
-  w.fail("quantity", "unknown quantity '" + s +
-                         "' (capacity, least_friction_angle, stands, threshold, reaction, reaction_balance, duality_gap)");
+  w.fail("quantity", "unknown quantity '" + s + "' (capacity, least_friction_angle, stands, threshold, reaction, reaction_balance, duality_gap)");
 }
 
 Expected expected_field(const json& x, Quantity q, const Where& w, const std::string& field) {
@@ -141,9 +139,9 @@ Benchmark parse_benchmark(const json& e, const Where& file_where, size_t index) 
   w.benchmark = std::to_string(index + 1);
   w.benchmark.insert(0, 1, '#');
   if (e.contains("name") && e["name"].is_string()) w.benchmark = e["name"].get<std::string>();
-  only_fields(e, {"name", "title", "source", "notes", "quick", "case", "options", "quantity", "expected", "search", "support",
-                  "component", "d", "methods"},
-              w, "");
+  only_fields(
+      e, {"name", "title", "source", "notes", "quick", "case", "options", "quantity", "expected", "search", "support", "component", "d", "methods"},
+      w, "");
   Benchmark b;
   b.name = string_field(e, "name", w, "", true);
   b.title = string_field(e, "title", w, "", true);
@@ -182,8 +180,7 @@ Benchmark parse_benchmark(const json& e, const Where& file_where, size_t index) 
     only_fields(s, {"parameter", "range", "resolution"}, w, "search.");
     Search q;
     q.parameter = string_field(s, "parameter", w, "search.", true);
-    if (!s.contains("range") || !s["range"].is_array() || s["range"].size() != 2 || !s["range"][0].is_number() ||
-        !s["range"][1].is_number())
+    if (!s.contains("range") || !s["range"].is_array() || s["range"].size() != 2 || !s["range"][0].is_number() || !s["range"][1].is_number())
       w.fail("search.range", "must be [low, high]");
     q.lo = s["range"][0].get<double>();
     q.hi = s["range"][1].get<double>();
@@ -220,8 +217,10 @@ Benchmark parse_benchmark(const json& e, const Where& file_where, size_t index) 
     }
     const Expected& ref = m.expected ? *m.expected : b.expected;
     // A yes/no answer needs no tolerance.
-    if (b.quantity != Quantity::stands) m.tolerance = tolerance_field(it.value(), w, p);
-    else if (it.value().contains("tolerance")) w.fail(p + "tolerance", "a yes/no quantity (stands) takes none");
+    if (b.quantity != Quantity::stands)
+      m.tolerance = tolerance_field(it.value(), w, p);
+    else if (it.value().contains("tolerance"))
+      w.fail(p + "tolerance", "a yes/no quantity (stands) takes none");
     m.options = options_field(it.value(), w, p);
     const bool prd_only = b.quantity == Quantity::least_friction_angle || b.quantity == Quantity::duality_gap;
     if (prd_only && m.method != Method::prd) w.fail("methods." + it.key(), std::string(quantity_name(b.quantity)) + " is a PRD quantity");
@@ -240,8 +239,7 @@ Catalogue parse_catalogue(const std::string& text, const std::string& source, co
   if (!doc.is_object()) w.fail("", "must be a JSON object");
   only_fields(doc, {"format", "description", "benchmarks"}, w, "");
   if (!doc.contains("format") || doc["format"] != "masonry-catalogue/1") w.fail("format", "must be \"masonry-catalogue/1\"");
-  if (!doc.contains("benchmarks") || !doc["benchmarks"].is_array() || doc["benchmarks"].empty())
-    w.fail("benchmarks", "must be a non-empty array");
+  if (!doc.contains("benchmarks") || !doc["benchmarks"].is_array() || doc["benchmarks"].empty()) w.fail("benchmarks", "must be a non-empty array");
   Catalogue cat;
   cat.source = source;
   cat.folder = folder;
@@ -280,15 +278,24 @@ Case generated(const std::string& name, const nlohmann::json& params, const Wher
   };
   // The parameters both arch generators share; a generator's own ones come first.
   auto arch_parameter = [&](auto& p, const std::string& k, const nlohmann::json& v) {
-    if (k == "thickness") p.thickness = num(k, v);
-    else if (k == "embrace_deg") p.embrace = num(k, v) * kDeg;
-    else if (k == "voussoirs") p.voussoirs = count(k, v);
-    else if (k == "depth") p.depth = num(k, v);
-    else if (k == "density") p.density = num(k, v);
-    else if (k == "spreading") p.spreading = flag(k, v);
-    else if (k == "step") p.step = num(k, v);
-    else if (k == "max_steps") p.max_steps = count(k, v);
-    else return false;
+    if (k == "thickness")
+      p.thickness = num(k, v);
+    else if (k == "embrace_deg")
+      p.embrace = num(k, v) * kDeg;
+    else if (k == "voussoirs")
+      p.voussoirs = count(k, v);
+    else if (k == "depth")
+      p.depth = num(k, v);
+    else if (k == "density")
+      p.density = num(k, v);
+    else if (k == "spreading")
+      p.spreading = flag(k, v);
+    else if (k == "step")
+      p.step = num(k, v);
+    else if (k == "max_steps")
+      p.max_steps = count(k, v);
+    else
+      return false;
     return true;
   };
   auto build = [&](auto make, const auto& p) {
@@ -302,7 +309,8 @@ Case generated(const std::string& name, const nlohmann::json& params, const Wher
   if (name == "circular-arch") {
     CircularArch p;
     for (auto it = params.begin(); it != params.end(); ++it) {
-      if (it.key() == "radius") p.radius = num(it.key(), *it);
+      if (it.key() == "radius")
+        p.radius = num(it.key(), *it);
       else if (!arch_parameter(p, it.key(), *it))
         w.fail("case.parameters." + it.key(), std::string("unknown parameter of circular-arch (radius, ") + shared + ")");
     }
@@ -311,8 +319,10 @@ Case generated(const std::string& name, const nlohmann::json& params, const Wher
   if (name == "pointed-arch") {
     PointedArch p = standard_pointed_arch();
     for (auto it = params.begin(); it != params.end(); ++it) {
-      if (it.key() == "rcirc") p.rcirc = num(it.key(), *it);
-      else if (it.key() == "eccentricity") p.eccentricity = num(it.key(), *it);
+      if (it.key() == "rcirc")
+        p.rcirc = num(it.key(), *it);
+      else if (it.key() == "eccentricity")
+        p.eccentricity = num(it.key(), *it);
       else if (!arch_parameter(p, it.key(), *it))
         w.fail("case.parameters." + it.key(), std::string("unknown parameter of pointed-arch (rcirc, eccentricity, ") + shared + ")");
     }
@@ -341,8 +351,7 @@ Case benchmark_case(const Catalogue& cat, const Benchmark& b, Method m, std::opt
   const Where w{cat.source, b.name};
   const CaseSource& s = b.case_source;
   nlohmann::json params = s.parameters;
-  const bool generator_search = value && b.search && b.search->parameter.find('.') == std::string::npos &&
-                                b.search->parameter != "gravity";
+  const bool generator_search = value && b.search && b.search->parameter.find('.') == std::string::npos && b.search->parameter != "gravity";
   if (generator_search) {
     if (s.generator.empty()) w.fail("search.parameter", "'" + b.search->parameter + "' is a generator parameter, but the case has no generator");
     params[b.search->parameter] = *value;
@@ -351,8 +360,8 @@ Case benchmark_case(const Catalogue& cat, const Benchmark& b, Method m, std::opt
   if (!s.generator.empty()) c = generated(s.generator, params, w);
   try {
     if (!s.file.empty()) {
-      const std::filesystem::path p = std::filesystem::path(s.file).is_absolute() ? std::filesystem::path(s.file)
-                                                                                   : std::filesystem::path(cat.folder) / s.file;
+      const std::filesystem::path p =
+          std::filesystem::path(s.file).is_absolute() ? std::filesystem::path(s.file) : std::filesystem::path(cat.folder) / s.file;
       c = load_case(p.string());
     } else if (!s.standard.empty()) {
       c = standard_case(s.standard);

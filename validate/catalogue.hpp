@@ -5,17 +5,15 @@
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "model/case.hpp"
 #include "model/method.hpp"
 
 namespace masonry {
-
 
 // What a benchmark measures. Units: capacity m; least_friction_angle and threshold on a friction
 // angle deg; stands 1 (stands) or 0; reaction N (moment N m); reaction_balance and duality_gap
@@ -34,9 +32,9 @@ const char* quantity_unit(Quantity q);
 
 // Where the structure comes from: exactly one of these.
 struct CaseSource {
-  std::string file;        // a case file, relative to the catalogue's folder
-  std::string standard;    // a standard scene: "pointed-arch", "cathedral-settlement", ...
-  std::string generator;   // "circular-arch" or "pointed-arch", with `parameters`
+  std::string file;       // a case file, relative to the catalogue's folder
+  std::string standard;   // a standard scene: "pointed-arch", "cathedral-settlement", ...
+  std::string generator;  // "circular-arch" or "pointed-arch", with `parameters`
   nlohmann::json parameters = nlohmann::json::object();
   nlohmann::json inline_case;  // a masonry-case/1 document
 };
@@ -50,7 +48,7 @@ struct Tolerance {
 
 struct Expected {
   enum class Kind { value, per_weight, method } kind = Kind::value;
-  double value = 0.0;         // value, or the multiple of the dead loads' vertical resultant
+  double value = 0.0;           // value, or the multiple of the dead loads' vertical resultant
   Method method = Method::prd;  // Kind::method: the other method's result on the same case
 };
 

@@ -2,10 +2,10 @@
 #include <algorithm>
 #include <sstream>
 
+#include "model/version.hpp"
 #include "report/escape.hpp"
 #include "report/format.hpp"
 #include "report/table.hpp"
-#include "model/version.hpp"
 #include "validate/validate.hpp"
 
 namespace masonry {
@@ -56,13 +56,12 @@ std::string quantity_cell(const ValidationRow& r) {
 std::vector<std::vector<std::string>> cells(const std::vector<ValidationRow>& rows) {
   std::vector<std::vector<std::string>> out;
   for (const ValidationRow& r : rows)
-    out.push_back({r.benchmark->name, method_cell(r), quantity_cell(r), cell_expected_or_none(r), cell_obtained(r), cell_error(r),
-                   cell_tolerance(r), verdict(r), fmt::number(r.seconds, "%.2f s", r.seconds), r.expected_from});
+    out.push_back({r.benchmark->name, method_cell(r), quantity_cell(r), cell_expected_or_none(r), cell_obtained(r), cell_error(r), cell_tolerance(r),
+                   verdict(r), fmt::number(r.seconds, "%.2f s", r.seconds), r.expected_from});
   return out;
 }
 
-const std::vector<std::string> kHeader = {"benchmark", "method", "quantity", "expected", "obtained", "error",
-                                          "tolerance", "pass", "time", "source"};
+const std::vector<std::string> kHeader = {"benchmark", "method", "quantity", "expected", "obtained", "error", "tolerance", "pass", "time", "source"};
 
 int passed(const std::vector<ValidationRow>& rows) {
   return static_cast<int>(std::count_if(rows.begin(), rows.end(), [](const ValidationRow& r) { return r.pass; }));
@@ -108,13 +107,14 @@ std::string validation_failures(const std::vector<ValidationRow>& rows) {
   for (const ValidationRow& r : rows) {
     if (!failed(r)) continue;
     const Benchmark& b = *r.benchmark;
-    out << verdict(r) << " " << b.name << " (" << method_cell(r) << "): expected " << quantity_name(b.quantity) << " "
-        << cell_expected(r);
+    out << verdict(r) << " " << b.name << " (" << method_cell(r) << "): expected " << quantity_name(b.quantity) << " " << cell_expected(r);
     if (b.quantity != Quantity::stands) out << " +- " << fmt::g(r.tolerance, 3);
     if (!r.unit.empty()) out << " " << r.unit;
     out << " (" << r.expected_from << "); ";
-    if (r.measured) out << "obtained " << cell_obtained(r);
-    else out << "no result";
+    if (r.measured)
+      out << "obtained " << cell_obtained(r);
+    else
+      out << "no result";
     if (!r.note.empty()) out << ": " << r.note;
     out << "\n";
   }
@@ -138,8 +138,13 @@ nlohmann::ordered_json validation_json(const Catalogue& cat, const std::vector<V
   j["rows"] = nlohmann::ordered_json::array();
   for (const ValidationRow& r : rows) {
     const Benchmark& b = *r.benchmark;
-    nlohmann::ordered_json x = {{"benchmark", b.name}, {"title", b.title}, {"method", method_cell(r)}, {"judged_as", method_name(r.method)},
-                                {"quantity", quantity_name(b.quantity)}, {"unit", r.unit}, {"expected", r.expected},
+    nlohmann::ordered_json x = {{"benchmark", b.name},
+                                {"title", b.title},
+                                {"method", method_cell(r)},
+                                {"judged_as", method_name(r.method)},
+                                {"quantity", quantity_name(b.quantity)},
+                                {"unit", r.unit},
+                                {"expected", r.expected},
                                 {"expected_from", r.expected_from}};
     // No NaN reaches a report: a row without a number says so.
     x["obtained"] = r.measured ? nlohmann::ordered_json(r.obtained) : nlohmann::ordered_json(nullptr);
@@ -178,8 +183,8 @@ std::string validation_markdown(const Catalogue& cat, const std::vector<Validati
       out << "\n\n";
       last = &b;
     }
-    out << "- " << md_escape(method_cell(r)) << ": " << (r.pass || !r.applicable ? verdict(r) : "**" + verdict(r) + "**") << ", obtained " << md_escape(cell_obtained(r))
-        << (r.unit.empty() ? "" : " " + r.unit);
+    out << "- " << md_escape(method_cell(r)) << ": " << (r.pass || !r.applicable ? verdict(r) : "**" + verdict(r) + "**") << ", obtained "
+        << md_escape(cell_obtained(r)) << (r.unit.empty() ? "" : " " + r.unit);
     if (!r.note.empty()) out << " (" << md_escape(r.note) << ")";
     for (const MethodRun& m : b.methods)
       if (m.method == r.method && b.quantity != Quantity::stands && r.applicable)

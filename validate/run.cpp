@@ -1,4 +1,6 @@
 // Running one benchmark: the quantity measured on each method, then judged.
+#include "runs/run.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -6,7 +8,6 @@
 #include <sstream>
 
 #include "prd/prd.hpp"
-#include "runs/run.hpp"
 #include "validate/validate.hpp"
 
 namespace masonry {
@@ -30,8 +31,7 @@ Measured not_applicable(const std::string& why) { return {false, 0.0, why, false
 const RunResult& run_method(const Case& c, Method m, RunCache& cache) {
   const std::string key = std::string(method_name(m)) + "\n" + case_to_json(c);
   auto it = cache.runs.find(key);
-  if (it == cache.runs.end())
-    it = cache.runs.emplace(key, run_case(c, m)).first;
+  if (it == cache.runs.end()) it = cache.runs.emplace(key, run_case(c, m)).first;
   return it->second;
 }
 
@@ -62,8 +62,7 @@ Measured bisect(const Benchmark& b, const std::function<Measured(double)>& at) {
   if (!lo.ok) return failed_at(s.lo, lo);
   Measured hi = at(s.hi);
   if (!hi.ok) return failed_at(s.hi, hi);
-  if (lo.value == hi.value)
-    return fail(std::string("the structure ") + (lo.value > 0 ? "stands" : "falls") + " at both ends of the search range");
+  if (lo.value == hi.value) return fail(std::string("the structure ") + (lo.value > 0 ? "stands" : "falls") + " at both ends of the search range");
   double a = s.lo, z = s.hi;
   const double stands_at_lo = lo.value;
   while (z - a > s.resolution) {
@@ -107,8 +106,7 @@ Measured from_run(const Benchmark& b, const Case& c, const RunResult& r) {
       const StepRecord* s = record_at(r, b.at_d);
       if (!s) return fail("no recorded equilibrium at d = " + std::to_string(b.at_d) + " m");
       for (const Reaction& x : s->reactions)
-        if (x.support == b.support)
-          return {true, b.component == "x" ? x.force.x() : b.component == "y" ? x.force.y() : x.moment, ""};
+        if (x.support == b.support) return {true, b.component == "x" ? x.force.x() : b.component == "y" ? x.force.y() : x.moment, ""};
       return fail("no reaction of support '" + b.support + "' at d = " + std::to_string(s->d) + " m");
     }
     case Quantity::reaction_balance: {
@@ -143,8 +141,7 @@ Measured from_run(const Benchmark& b, const Case& c, const RunResult& r) {
 }
 
 Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& cache) {
-  if (b.quantity == Quantity::threshold)
-    return bisect(b, [&](double v) { return stands(benchmark_case(cat, b, m, v), m); });
+  if (b.quantity == Quantity::threshold) return bisect(b, [&](double v) { return stands(benchmark_case(cat, b, m, v), m); });
   Case c = benchmark_case(cat, b, m);
   if (b.quantity == Quantity::stands) return stands(c, m);
   if (b.quantity == Quantity::least_friction_angle) c.prd.sliding_check = true;
@@ -194,8 +191,7 @@ Measured measure_outside(const Catalogue& cat, const Benchmark& b, const Outside
     case Quantity::least_friction_angle:
       return not_applicable("PRD's sliding check (the least friction angle of its force states) is not in a results file");
     case Quantity::duality_gap: return not_applicable("an LP duality gap is not in a results file");
-    case Quantity::threshold:
-      return bisect(b, [&](double v) { return outside_stands(s, benchmark_case(cat, b, s.as, v), b, cache); });
+    case Quantity::threshold: return bisect(b, [&](double v) { return outside_stands(s, benchmark_case(cat, b, s.as, v), b, cache); });
     case Quantity::stands: return outside_stands(s, benchmark_case(cat, b, s.as), b, cache);
     default: break;
   }
@@ -246,13 +242,12 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
     bool have_expected = true;
     switch (x.kind) {
       case Expected::Kind::value: row.expected = x.value; break;
-      case Expected::Kind::per_weight:
-        row.expected = x.value * dead_load_resultant(benchmark_case(cat, b, mr.method)).norm();
-        break;
+      case Expected::Kind::per_weight: row.expected = x.value * dead_load_resultant(benchmark_case(cat, b, mr.method)).norm(); break;
       case Expected::Kind::method: {
         const Measured ref = measure(cat, b, x.method, cache);
         row.expected_from = std::string(method_label(x.method)) + " on the same case";
-        if (ref.ok) row.expected = ref.value;
+        if (ref.ok)
+          row.expected = ref.value;
         else {
           have_expected = false;
           row.note = "reference (" + std::string(method_name(x.method)) + "): " + ref.note;
@@ -268,8 +263,7 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
       row.solver_error = got.error;
       row.applicable = got.applicable;
       row.tolerance = mr.tolerance.limit(row.expected);
-      row.pass = got.ok && (b.quantity == Quantity::stands ? got.value == row.expected
-                                                           : std::abs(row.error()) <= row.tolerance);
+      row.pass = got.ok && (b.quantity == Quantity::stands ? got.value == row.expected : std::abs(row.error()) <= row.tolerance);
     }
     finish(std::move(row), t0);
   }

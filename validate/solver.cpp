@@ -111,11 +111,9 @@ RunResult run_outside(const OutsideSolver& s, const Case& c, const std::string& 
     m << "the solver ran past " << s.timeout_s << " s (--solver-timeout) and was stopped; its files: " << dir.string();
     throw std::runtime_error(m.str());
   }
-  if (e.status != 0)
-    throw std::runtime_error("the solver exited with status " + std::to_string(e.status) + tail + "; its files: " + dir.string());
+  if (e.status != 0) throw std::runtime_error("the solver exited with status " + std::to_string(e.status) + tail + "; its files: " + dir.string());
   const fs::path results = out / "results.json";
-  if (!fs::exists(results))
-    throw std::runtime_error("the solver wrote no {out}/results.json (" + results.string() + ")" + tail);
+  if (!fs::exists(results)) throw std::runtime_error("the solver wrote no {out}/results.json (" + results.string() + ")" + tail);
   return load_results(results.string(), c);
 }
 

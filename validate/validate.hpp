@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "validate/catalogue.hpp"
 #include "model/results.hpp"
+#include "validate/catalogue.hpp"
 
 namespace masonry {
 
@@ -32,18 +32,18 @@ RunResult run_outside(const OutsideSolver& s, const Case& c, const std::string& 
 struct ValidationRow {
   const Benchmark* benchmark = nullptr;
   Method method = Method::prd;
-  std::string method_label;     // the table's method column: the method's name, or the outside solver's
-  bool applicable = true;       // false: the quantity is none a results file gives, or no tolerance for the method (note says)
-  bool solver_error = false;    // an outside solver failed (exit status, no file, a file the reader refuses)
-  std::string unit;             // of expected, obtained, error and tolerance
+  std::string method_label;   // the table's method column: the method's name, or the outside solver's
+  bool applicable = true;     // false: the quantity is none a results file gives, or no tolerance for the method (note says)
+  bool solver_error = false;  // an outside solver failed (exit status, no file, a file the reader refuses)
+  std::string unit;           // of expected, obtained, error and tolerance
   double expected = 0.0;
   double obtained = 0.0;
-  double tolerance = 0.0;       // the limit on |obtained - expected|
-  bool measured = false;        // false: no number came out (a run error, an undecided DEM hold)
+  double tolerance = 0.0;  // the limit on |obtained - expected|
+  bool measured = false;   // false: no number came out (a run error, an undecided DEM hold)
   bool pass = false;
-  double seconds = 0.0;         // wall time of the row's runs (the reference method's included)
-  std::string expected_from;    // the benchmark's source, or "PRD on the same case"
-  std::string note;             // why no number came out, or what the number is (a bracket)
+  double seconds = 0.0;       // wall time of the row's runs (the reference method's included)
+  std::string expected_from;  // the benchmark's source, or "PRD on the same case"
+  std::string note;           // why no number came out, or what the number is (a bracket)
   double error() const { return obtained - expected; }
 };
 
@@ -59,8 +59,7 @@ struct RunCache {
 // outside solver: one row, the solver judged as the method solver->as (not applicable when the
 // benchmark has no tolerance for that method, or measures what a results file cannot give).
 std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& b, RunCache& cache,
-                                         const std::function<void(const ValidationRow&)>& on_row = {},
-                                         const OutsideSolver* solver = nullptr);
+                                         const std::function<void(const ValidationRow&)>& on_row = {}, const OutsideSolver* solver = nullptr);
 // Whether a row counts against the exit code: it failed or errored (a not-applicable row does not).
 inline bool failed(const ValidationRow& r) { return r.applicable && !r.pass; }
 

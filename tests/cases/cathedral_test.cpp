@@ -193,8 +193,7 @@ TEST(Cathedral, JointsWhereTheDrawingHasThem) {
       }();
       bool below = false;
       for (const Interface& f : ifs)
-        if ((f.i == static_cast<int>(i) || f.j == static_cast<int>(i)) && std::abs(f.a.y() - ylo) < 1e-9 &&
-            std::abs(f.b.y() - ylo) < 1e-9)
+        if ((f.i == static_cast<int>(i) || f.j == static_cast<int>(i)) && std::abs(f.a.y() - ylo) < 1e-9 && std::abs(f.b.y() - ylo) < 1e-9)
           below = true;
       EXPECT_TRUE(below) << name << " has no bed joint";
     }

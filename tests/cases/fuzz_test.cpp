@@ -2,11 +2,12 @@
 // (tests/fuzz.hpp) of the example drawings and the standard case files. Each mutant is imported
 // or loaded, or refused with one line naming the file; nothing crashes, hangs, or escapes as any
 // other exception. CI runs it in the Release build and under AddressSanitizer and UBSan.
+#include "fuzz.hpp"
+
 #include <gtest/gtest.h>
 
 #include "cases/dxf.hpp"
 #include "common.hpp"
-#include "fuzz.hpp"
 #include "model/case.hpp"
 
 namespace masonry {

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "common.hpp"
-#include "dem/dem.hpp"
 #include "cases/dxf.hpp"
 #include "cases/generators.hpp"
-#include "prd/prd.hpp"
 #include "cases/show.hpp"
+#include "common.hpp"
+#include "dem/dem.hpp"
+#include "prd/prd.hpp"
 #include "xml.hpp"
 
 namespace masonry {
@@ -33,8 +33,11 @@ std::string dxf(const std::vector<Poly>& polys, int insunits = 6, const std::str
   o << "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n" << insunits << "\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n";
   int handle = 0x40;
   for (const Poly& p : polys) {
-    o << "0\nLWPOLYLINE\n5\n" << std::hex << std::uppercase << handle++ << std::dec << "\n8\n" << p.layer << "\n90\n" << p.v.size()
-      << "\n70\n" << (p.closed ? 1 : 0) << "\n";
+    o << "0\nLWPOLYLINE\n5\n"
+      << std::hex << std::uppercase << handle++ << std::dec << "\n8\n"
+      << p.layer << "\n90\n"
+      << p.v.size() << "\n70\n"
+      << (p.closed ? 1 : 0) << "\n";
     for (const auto& x : p.v) {
       o << "10\n" << x[0] << "\n20\n" << x[1] << "\n";
       if (x[2] != 0) o << "42\n" << x[2] << "\n";
@@ -140,9 +143,14 @@ TEST(CasesImport, RefusalsAreOneLineNamingDrawingLayerAndEntity) {
       {dxf({}), "nothing to import"},
       {"", "the drawing is empty"},
       {std::string("AutoCAD Binary DXF\r\n\x1a\0", 22) + std::string(200, '\x01'), "binary DXF"},
-      {std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10) + std::string(300, '\x03'), "not a DXF drawing"},
+      {std::string("\x7f"
+                   "ELF\x02\x01\x01\0\0\0",
+                   10) +
+           std::string(300, '\x03'),
+       "not a DXF drawing"},
       {dxf({ground, rect("MASONRY", 0, 0, 1, 1)}, 0), "$INSUNITS"},
-      {dxf({ground, rect("MASONRY", 0, 0, 1, 1)}, 6, "0\nCIRCLE\n5\n99\n8\nMASONRY\n10\n0\n20\n2\n40\n0.5\n"), "CIRCLE on layer 'MASONRY' (handle 99)"},
+      {dxf({ground, rect("MASONRY", 0, 0, 1, 1)}, 6, "0\nCIRCLE\n5\n99\n8\nMASONRY\n10\n0\n20\n2\n40\n0.5\n"),
+       "CIRCLE on layer 'MASONRY' (handle 99)"},
   };
   for (const Bad& b : bad) {
     const std::string msg = import_error(b.text);
@@ -303,15 +311,19 @@ TEST(CasesImport, ArcsBeyondAHalfCircleStayOnTheirCircle) {
 // Texts name blocks in UTF-8 whatever the drawing's age: 8-bit code page text (Latin-1 here) and
 // AutoCAD's \U+XXXX escapes are converted.
 TEST(CasesImport, TextIsReadAsUtf8) {
-  const std::string texts = "0\nTEXT\n5\n50\n8\nMASONRY\n10\n0.5\n20\n0.5\n1\npi\xe8" "ce\n"
-                            "0\nTEXT\n5\n51\n8\nSUPPORT\n10\n0\n20\n-0.2\n1\nsol \\U+00E9\\U+20AC\n";
+  const std::string texts =
+      "0\nTEXT\n5\n50\n8\nMASONRY\n10\n0.5\n20\n0.5\n1\npi\xe8"
+      "ce\n"
+      "0\nTEXT\n5\n51\n8\nSUPPORT\n10\n0\n20\n-0.2\n1\nsol \\U+00E9\\U+20AC\n";
   Scratch dir("utf8");
   test::write(dir.path / "t.dxf", dxf({rect("SUPPORT", -2, -0.5, 2, 0), rect("MASONRY", 0, 0, 1, 1)}, 6, texts));
   DxfImportOptions o;
   o.density = 2000;
   const Case c = import_dxf((dir.path / "t.dxf").string(), o).c;
   EXPECT_EQ(c.blocks[0].id, "sol \xc3\xa9\xe2\x82\xac");
-  EXPECT_EQ(c.blocks[1].id, "pi\xc3\xa8" "ce");
+  EXPECT_EQ(c.blocks[1].id,
+            "pi\xc3\xa8"
+            "ce");
 }
 
 // A wall drawn as a stack of bricks, each named by a text inside it: every brick gets its name
@@ -326,8 +338,10 @@ TEST(CasesImport, ABrickWallDrawingImportsEveryBrickWithItsName) {
     for (int k = 0; k < bricks; ++k) {
       polys.push_back(rect("MASONRY", k * 0.25, r * 0.125, (k + 1) * 0.25, (r + 1) * 0.125));
       std::ostringstream t;
-      t << "0\nTEXT\n5\n" << std::hex << handle++ << std::dec << "\n8\nMASONRY\n10\n" << (k + 0.5) * 0.25 << "\n20\n" << (r + 0.5) * 0.125
-        << "\n1\nb" << r << "-" << k << "\n";
+      t << "0\nTEXT\n5\n"
+        << std::hex << handle++ << std::dec << "\n8\nMASONRY\n10\n"
+        << (k + 0.5) * 0.25 << "\n20\n"
+        << (r + 0.5) * 0.125 << "\n1\nb" << r << "-" << k << "\n";
       texts += t.str();
     }
   Scratch dir("wall");
@@ -389,7 +403,8 @@ bool well_formed(const std::string& x, std::string& why) {
     if (tag.find('<') != std::string::npos) return why = "< inside a tag", false;
     if (std::count(tag.begin(), tag.end(), '"') % 2) return why = "unbalanced quotes in <" + tag + ">", false;
     if (tag[0] == '/') {
-      if (open.empty() || open.back() != tag.substr(1)) return why = "</" + tag.substr(1) + "> closes " + (open.empty() ? "nothing" : open.back()), false;
+      if (open.empty() || open.back() != tag.substr(1))
+        return why = "</" + tag.substr(1) + "> closes " + (open.empty() ? "nothing" : open.back()), false;
       open.pop_back();
     } else if (tag.back() != '/') {
       open.push_back(tag.substr(0, tag.find_first_of(" \n")));
@@ -429,15 +444,13 @@ TEST(CasesShow, SvgIsWellFormedWithOnePolygonPerBlock) {
 TEST(CasesShow, CommandWritesTheFile) {
   Scratch dir("show");
   const std::string out = (dir.path / "c.svg").string();
-  EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " cases show " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --svg " + out +
-                      " 2>/dev/null"),
-            0);
+  EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " cases show " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --svg " + out + " 2>/dev/null"), 0);
   std::string why;
   EXPECT_TRUE(well_formed(test::read(out), why)) << why;
   // Import through the command, with the notes on stderr.
   const std::string cs = (dir.path / "t.json").string(), err = (dir.path / "err").string();
-  EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " cases import " + kDrawings + "tilting-block.dxf --layers " + kDrawings +
-                      "layers.json --merge " + kDrawings + "tilting-block.fragment.json --out " + cs + " 2>" + err),
+  EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " cases import " + kDrawings + "tilting-block.dxf --layers " + kDrawings + "layers.json --merge " +
+                      kDrawings + "tilting-block.fragment.json --out " + cs + " 2>" + err),
             0);
   EXPECT_EQ(load_case(cs).blocks.size(), 2u);
   EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " cases import " + kDrawings + "tilting-block.dxf --out " + cs + " 2>" + err), 2);

@@ -1,6 +1,8 @@
 // The generators' parameter tables: one definition of each parameter, which the command line
 // (`masonry cases NAME --PARAM`) and generate_case (a sweep's generator.PARAM) both read, so the
 // same names give the same case.
+#include "cases/parameters.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +12,6 @@
 #include <sstream>
 
 #include "cases/generators.hpp"
-#include "cases/parameters.hpp"
 #include "common.hpp"
 
 namespace masonry {
@@ -43,7 +44,9 @@ TEST(GeneratorParameters, TheCommandLineAndGenerateCaseBuildTheSameCase) {
     std::string generator, args;
     json values;
   } calls[] = {
-      {"circular-arch", "--thickness 0.15 --voussoirs 12 --embrace-deg 160 --fixed", {{"thickness", 0.15}, {"voussoirs", 12}, {"embrace-deg", 160}, {"fixed", true}}},
+      {"circular-arch",
+       "--thickness 0.15 --voussoirs 12 --embrace-deg 160 --fixed",
+       {{"thickness", 0.15}, {"voussoirs", 12}, {"embrace-deg", 160}, {"fixed", true}}},
       {"pointed-arch", "--eccentricity 0.1", {{"eccentricity", 0.1}}},
       {"cathedral-settlement", "--nave-thickness 0.7 --buttress-width 3.5", {{"nave-thickness", 0.7}, {"buttress-width", 3.5}}},
   };

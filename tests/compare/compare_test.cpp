@@ -2,6 +2,8 @@
 // trip the tolerance gate, results.json reads back to the same comparison, missing numbers are
 // null, and the pointed arch is recognised as symmetric with the mirror pairs its generator
 // documents (cases/generators.hpp: "left".."right", "v0".."v13").
+#include "compare/compare.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <set>
 
 #include "common.hpp"
-#include "compare/compare.hpp"
 #include "compare/convergence.hpp"
 #include "prd/prd.hpp"
 
@@ -384,8 +385,8 @@ TEST(Compare, HingesPartWhereTheyDifferForGood) {
   ASSERT_EQ(p->end_only_a.size(), 1u);
   EXPECT_EQ(p->end_only_a[0].rfind(name(j2), 0), 0u) << p->end_only_a[0];
   ASSERT_EQ(p->end_only_b.size(), 1u);
-  EXPECT_FALSE(hinges_part(arch(), a, a, 1e-4));      // a run does not part from itself
-  EXPECT_FALSE(hinges_part(arch(), a, b, 5e-3));      // nothing open that wide
+  EXPECT_FALSE(hinges_part(arch(), a, a, 1e-4));  // a run does not part from itself
+  EXPECT_FALSE(hinges_part(arch(), a, b, 5e-3));  // nothing open that wide
   // A difference at the last record alone is the approach to collapse, not a parting.
   EXPECT_FALSE(hinges_part(arch(), run({{}, {j1}, {j1, j2}}), run({{}, {j1}, {j1}}), 1e-4));
   // The settled state (step 0) is no mechanism: a DEM's elastic settling gaps there, wide with
@@ -453,8 +454,9 @@ TEST(Convergence, ASpreadBeyondTheLimitNamesItsEndsAndPrdOnTheirConfigurations) 
   ASSERT_FALSE(v.ok);
   ASSERT_EQ(v.problems.size(), 1u);
   EXPECT_NE(v.problems[0].find("spread by 4.00%"), std::string::npos) << v.problems[0];
-  EXPECT_NE(v.problems[0].find("from soft (soft what): 0.9700 m (PRD on its deformed configuration: 0.9750 m, +0.52%) to stiff (stiff what): 1.0100 m"),
-            std::string::npos)
+  EXPECT_NE(
+      v.problems[0].find("from soft (soft what): 0.9700 m (PRD on its deformed configuration: 0.9750 m, +0.52%) to stiff (stiff what): 1.0100 m"),
+      std::string::npos)
       << v.problems[0];
 }
 

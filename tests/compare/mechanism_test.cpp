@@ -42,9 +42,7 @@ double least(const Comparison& k) {
   return x;
 }
 
-Case half_step(const Case& c) {
-  return with_option(with_option(c, "motion.step", c.motion.step / 2), "motion.max_steps", 2 * c.motion.max_steps);
-}
+Case half_step(const Case& c) { return with_option(with_option(c, "motion.step", c.motion.step / 2), "motion.max_steps", 2 * c.motion.max_steps); }
 
 // The same mechanism at another resolution of the path: the step halved.
 TEST(Mechanism, PrdAgainstItselfAtHalfTheStepAgrees) {
@@ -208,7 +206,8 @@ TEST(MechanismCommand, AnotherMechanismFailsTheCheckAndHalfTheStepPasses) {
   ASSERT_EQ(test::run(exe + " prd " + cs + " --out " + (d / "prd").string() + " 2>/dev/null"), 0);
   ASSERT_EQ(test::run(exe + " prd " + cs + " --hold nave-41/R-pier-30:A --out " + (d / "held").string() + " 2>/dev/null"), 0);
   ASSERT_EQ(test::run(exe + " prd " + cs + " --step 0.005 --max-steps 600 --out " + (d / "half").string() + " 2>/dev/null"), 0);
-  const std::string base = exe + " compare " + cs + " --quiet --tolerances " + kSource + "/reports/paper-tolerances.json --runs " + (d / "prd").string();
+  const std::string base =
+      exe + " compare " + cs + " --quiet --tolerances " + kSource + "/reports/paper-tolerances.json --runs " + (d / "prd").string();
   EXPECT_EQ(test::run(base + " " + (d / "held").string() + " --out " + (d / "c-held").string() + " 2>" + (d / "err.txt").string()), 1);
   const std::string err = test::read(d / "err.txt");
   EXPECT_NE(err.find("limit exceeded: mechanism: from d = 0 to "), std::string::npos) << err;

@@ -1,6 +1,8 @@
 // Reports and the command: the tolerance gate's exit code through `masonry compare --runs`, the
 // reports' escaping of case text, and report.html in headless Chromium (no console errors, the
 // slider's test hook changes the drawn step, markup in a case name does not run).
+#include "compare/report.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +14,6 @@
 #include "common.hpp"
 #include "compare/compare.hpp"
 #include "prd/prd.hpp"
-#include "compare/report.hpp"
 #include "xml.hpp"
 
 namespace masonry {
@@ -85,7 +86,8 @@ TEST(CompareCommand, ADemRunIsHandedToPrdOnItsDeformedConfiguration) {
   const test::Scratch scratch("compare-deformed");
   const fs::path d = scratch.path;
   const std::string block = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json";
-  ASSERT_EQ(run(std::string(MASONRY_EXE) + " compare " + block + " --stiffness-reduction 10 --quiet --out " + (d / "c").string() + " 2>/dev/null"), 0);
+  ASSERT_EQ(run(std::string(MASONRY_EXE) + " compare " + block + " --stiffness-reduction 10 --quiet --out " + (d / "c").string() + " 2>/dev/null"),
+            0);
   const auto j = nlohmann::json::parse(read(d / "c" / "comparison.json"));
   ASSERT_EQ(j["runs"].size(), 2u);
   EXPECT_FALSE(j["runs"][0].contains("prd_on_run")) << "PRD's own run is not handed to PRD";
@@ -198,10 +200,10 @@ bool have_chromium() { return run("command -v chromium >/dev/null 2>&1") == 0; }
 // Loads the page in headless Chromium and returns the DOM after the page's own script ran.
 std::string dump_dom(const fs::path& html, const std::string& fragment, const fs::path& work) {
   const fs::path profile = work / "profile", out = work / "dom.html";
-  const std::string cmd = "timeout 90 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
-                          "--disable-background-networking --disable-component-update --disable-sync --user-data-dir=" +
-                          profile.string() + " --virtual-time-budget=5000 --dump-dom 'file://" + html.string() + fragment + "' > " +
-                          out.string() + " 2>/dev/null";
+  const std::string cmd =
+      "timeout 90 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync --user-data-dir=" +
+      profile.string() + " --virtual-time-budget=5000 --dump-dom 'file://" + html.string() + fragment + "' > " + out.string() + " 2>/dev/null";
   EXPECT_EQ(run(cmd), 0) << cmd;
   return read(out);
 }

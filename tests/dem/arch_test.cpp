@@ -8,8 +8,8 @@
 #include <map>
 #include <set>
 
-#include "dem/dem.hpp"
 #include "cases/generators.hpp"
+#include "dem/dem.hpp"
 #include "prd/prd.hpp"
 #include "util.hpp"
 
@@ -54,8 +54,8 @@ TEST(DemArch, CapacityAndHingesMatchPrd) {
   const Case c = test::semicircular_arch_case();
   const DemSettings s = DemSettings::from_case(c);
   const RunResult dem = dem_run(c, s);
-  std::printf("DEM: %s capacity %.4f m, %d stable steps, %lld cycles, %.2f s, dt %.3g s\n", status_name(dem.status),
-              dem.capacity, dem.stable_steps, dem.timing.cycles, dem.timing.total_s, dem.settings.value("dt", 0.0));
+  std::printf("DEM: %s capacity %.4f m, %d stable steps, %lld cycles, %.2f s, dt %.3g s\n", status_name(dem.status), dem.capacity, dem.stable_steps,
+              dem.timing.cycles, dem.timing.total_s, dem.settings.value("dt", 0.0));
   ASSERT_EQ(dem.status, RunStatus::collapse) << dem.message;
   ASSERT_GT(dem.capacity, 0);
   const auto hd = hinges(dem);

@@ -1,6 +1,5 @@
 // `masonry dem CASE --out DIR`: results.json and steps.csv written, exit codes.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "model/case.hpp"
 #include "cases/generators.hpp"
+#include "model/case.hpp"
 
 namespace {
 

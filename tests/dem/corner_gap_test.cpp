@@ -18,7 +18,7 @@ struct TurnAndSlide {
   double L, theta, s;
   Vec2 ni{0, 1};
   Vec2 nj() const { return Vec2(std::sin(theta), -std::cos(theta)); }  // (0, -1) turned by theta
-  Vec2 moved(const Vec2& p) const {                                     // a point of block j
+  Vec2 moved(const Vec2& p) const {                                    // a point of block j
     const double c = std::cos(theta), n = std::sin(theta);
     return Vec2(c * p.x() - n * p.y() + s, n * p.x() + c * p.y());
   }

@@ -56,8 +56,7 @@ void expect_all_finite(const nlohmann::ordered_json& j, const std::string& where
 void expect_statics(const Case& c, const RunResult& r, double rel) {
   ASSERT_FALSE(r.steps.empty()) << r.message;
   const StepRecord& st = r.steps[0];
-  ASSERT_TRUE(st.settled.value_or(false)) << "unbalanced " << (st.hold ? st.hold->unbalanced_ratio : -1.0) << ", "
-                                                << r.message;
+  ASSERT_TRUE(st.settled.value_or(false)) << "unbalanced " << (st.hold ? st.hold->unbalanced_ratio : -1.0) << ", " << r.message;
   double W = 0, Fx = 0;
   for (const Load& l : c.loads) Fx += l.force.x();
   for (const Block& b : c.blocks) W += block_mass(b) * c.gravity;
@@ -202,8 +201,7 @@ TEST(DemExtremes, BlowUpStopsTheRunInsteadOfBeingRecorded) {
     const RunResult r = dem_run(c, s);
     SCOPED_TRACE("factor " + std::to_string(factor));
     EXPECT_EQ(r.status, RunStatus::error);
-    EXPECT_TRUE(r.message.find("blew up") != std::string::npos || r.message.find("non-finite") != std::string::npos)
-        << r.message;
+    EXPECT_TRUE(r.message.find("blew up") != std::string::npos || r.message.find("non-finite") != std::string::npos) << r.message;
     EXPECT_EQ(r.message.find('\n'), std::string::npos) << r.message;
     EXPECT_TRUE(r.steps.empty());  // step 0 never finished
     expect_all_finite(to_json(r, c));

@@ -153,7 +153,7 @@ TEST(DemGeometry, StraightAngleVerticesChangeNothing) {
   Case plain = test::tilt_case(b, h, 35);
   Case marked = plain;
   marked.blocks[0].vertices = {Vec2(-0.6, -0.1), Vec2(0.6, -0.1), Vec2(0.6, 0), Vec2(0.05, 0), Vec2(0, 0), Vec2(-0.6, 0)};
-  marked.blocks[1].vertices = {Vec2(-0.1, 0), Vec2(0, 0),     Vec2(0.1, 0),  Vec2(0.1, 0.2),
+  marked.blocks[1].vertices = {Vec2(-0.1, 0),  Vec2(0, 0),   Vec2(0.1, 0),    Vec2(0.1, 0.2),
                                Vec2(0.1, 0.4), Vec2(0, 0.4), Vec2(-0.1, 0.4), Vec2(-0.1, 0.2)};
   validate_geometry(marked);
   EXPECT_EQ(dem::convex_pieces(marked.blocks[1].vertices).front().size(), 4u);
@@ -234,8 +234,8 @@ TEST(DemGeometry, CachedManifoldIsCollidesAlongRandomPaths) {
       tha += 0.01 * step * gauss(rng);
       const Poly A = place(box, xa, tha), B = place(quad, xb, thb);
       const double turned_a = std::abs(tha - tha0), turned_b = std::abs(thb - thb0);
-      const double motion = (xa - xa0).cwiseAbs().sum() + turned_a * r_a + (xb - xb0).cwiseAbs().sum() + turned_b * r_b +
-                            (turned_a + turned_b) * lever;
+      const double motion =
+          (xa - xa0).cwiseAbs().sum() + turned_a * r_a + (xb - xb0).cwiseAbs().sum() + turned_b * r_b + (turned_a + turned_b) * lever;
       dem::Manifold got, want;
       const bool hit = dem::collide_cached(A.v.data(), A.n.data(), 4, B.v.data(), B.n.data(), 4, motion, lever, cache, got);
       const bool hit_fresh = dem::collide(A.v.data(), A.n.data(), 4, B.v.data(), B.n.data(), 4, want);

@@ -132,8 +132,7 @@ TEST(DemSettledCathedral, TheNaveSwaysAsTheFourBarLinkageOfItsOpenJoints) {
   // The DEM: the left segment's spin while the sway grows from rounding noise to where a hinge
   // closes (about 1e-4 rad/s on this scene); fit log|spin| against time between 1e-6 and 1e-5
   // rad/s, once the settling's own decaying motion (which still shows below 1e-6) is gone.
-  const int probe = lk.seg[0][lk.seg[0].size() / 2], crown = lk.seg[1][lk.seg[1].size() / 2],
-            right = lk.seg[2][lk.seg[2].size() / 2];
+  const int probe = lk.seg[0][lk.seg[0].size() / 2], crown = lk.seg[1][lk.seg[1].size() / 2], right = lk.seg[2][lk.seg[2].size() / 2];
   std::vector<double> ts, ls;
   double w = 0;
   for (double t = 1.75; t < 15 && std::abs(w) < 1e-5; t += 0.25) {

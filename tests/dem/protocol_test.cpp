@@ -3,6 +3,8 @@
 // collapse is bracketed from the last equilibrium, so the capacity does not move with the
 // increment; hinges are measured from the settled state; a restored state replays exactly; and
 // a small arch gives one capacity across the settings that must not matter.
+#include "dem/protocol.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,11 +13,10 @@
 #include "common.hpp"
 #include "compare/convergence.hpp"
 #include "dem/dem.hpp"
-#include "prd/prd.hpp"
-#include "dem/protocol.hpp"
-#include "util.hpp"
 #include "dem/variants.hpp"
+#include "prd/prd.hpp"
 #include "runs/parallel.hpp"
+#include "util.hpp"
 
 namespace {
 
@@ -160,7 +161,8 @@ TEST(DemBracket, CapacityDoesNotMoveWithTheIncrement) {
     c.motion.max_steps = static_cast<int>(40 / step_deg);
     const RunResult r = test::tilt_run(c);
     ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
-    std::printf("step %g deg: capacity %.4f deg, bracket %s\n", step_deg, r.capacity / kDeg, r.collapse_bracket ? std::to_string(r.collapse_bracket->width).c_str() : "none");
+    std::printf("step %g deg: capacity %.4f deg, bracket %s\n", step_deg, r.capacity / kDeg,
+                r.collapse_bracket ? std::to_string(r.collapse_bracket->width).c_str() : "none");
     ASSERT_TRUE(r.collapse_bracket);
     const double width = r.collapse_bracket->width;
     EXPECT_LE(width, c.dem.bracket_fraction * c.motion.step * (1 + 1e-9));
@@ -401,8 +403,8 @@ TEST(DemConvergence, CommandWritesTheStudy) {
   // read-back run keeps its file untouched (the deterministic DEM gives the rerun's capacity
   // again).
   const auto stamp = std::filesystem::last_write_time(d.path / "out" / "default" / "results.json");
-  const std::string base = std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --convergence --quiet --out " +
-                           (d.path / "out").string();
+  const std::string base =
+      std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --convergence --quiet --out " + (d.path / "out").string();
   EXPECT_EQ(test::run(base + " --only damping 2>/dev/null"), 0);
   EXPECT_EQ(std::filesystem::last_write_time(d.path / "out" / "default" / "results.json"), stamp);
   const nlohmann::json again = nlohmann::json::parse(test::read(d.path / "out" / "convergence.json"));
@@ -418,8 +420,8 @@ TEST(DemConvergence, CommandWritesTheStudy) {
   const std::string bad = d.path.string() + "/bad.txt";
   EXPECT_EQ(test::run(base + " --only dampin 2>" + bad), 2);
   EXPECT_NE(test::read(bad).find("no variant 'dampin'"), std::string::npos) << test::read(bad);
-  EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --convergence --quiet --only damping --out " +
-                      (d.path / "empty").string() + " 2>" + bad),
+  EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR +
+                      "/cases/tilting-block.json --convergence --quiet --only damping --out " + (d.path / "empty").string() + " 2>" + bad),
             2);
   EXPECT_NE(test::read(bad).find("default/results.json is missing"), std::string::npos) << test::read(bad);
 }
@@ -431,13 +433,13 @@ TEST(DemConvergence, CommandWritesTheStudy) {
 TEST(DemStiffnessStudy, TheTopplingTiltTendsToTheRigidBlocksAsTheJointsStiffen) {
   test::Scratch d("dem-stiffness");
   const std::string out = (d.path / "out").string();
-  ASSERT_EQ(test::run(std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --stiffness-study --jobs 2 --quiet --out " +
-                      out + " 2>/dev/null"),
+  ASSERT_EQ(test::run(std::string(MASONRY_EXE) + " dem " + MASONRY_SOURCE_DIR +
+                      "/cases/tilting-block.json --stiffness-study --jobs 2 --quiet --out " + out + " 2>/dev/null"),
             0);
   const nlohmann::json j = nlohmann::json::parse(test::read(d.path / "out" / "stiffness.json"));
   EXPECT_EQ(j["study"], "stiffness");
   EXPECT_TRUE(j["ok"].get<bool>()) << j.dump(1);
-  const std::map<std::string, double> factor{{"default", 1.0},     {"softer-x10", 0.1},   {"softer-x3", 1.0 / 3},
+  const std::map<std::string, double> factor{{"default", 1.0},    {"softer-x10", 0.1},   {"softer-x3", 1.0 / 3},
                                              {"stiffer-x3", 3.0}, {"stiffer-x10", 10.0}, {"stiffer-x30", 30.0}};
   ASSERT_EQ(j["runs"].size(), factor.size());
   ASSERT_EQ(j["runs"][0]["name"], "default");

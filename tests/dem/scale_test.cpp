@@ -65,7 +65,7 @@ TEST(DemScale, APositionFarFromTheOriginChangesNothing) {
   const RunResult here = topple_run(2000, 9.81), there = topple_run(2000, 9.81, far);
   ASSERT_EQ(there.status, RunStatus::collapse) << there.message;
   EXPECT_NEAR(there.capacity, here.capacity, 0.01 * kDeg);
-  const Pose& p = there.steps[1].poses[1], &q = here.steps[1].poses[1];
+  const Pose &p = there.steps[1].poses[1], &q = here.steps[1].poses[1];
   EXPECT_NEAR(p.x - far.x(), q.x, 1e-6);
   EXPECT_NEAR(p.y - far.y(), q.y, 1e-6);
 }

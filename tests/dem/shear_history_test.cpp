@@ -5,9 +5,8 @@
 // the id, flips with the hinge's angle while the contact stays where it was. Dropping the shear
 // at each flip is a slip that no friction law allows (dem/README.md, "Shear history follows the
 // contact, not the id").
-#include <gtest/gtest.h>
-
 #include <box2d/b2_common.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <functional>
 
-#include "model/case.hpp"
-#include "dem/dem.hpp"
 #include "cases/generators.hpp"
+#include "dem/dem.hpp"
+#include "model/case.hpp"
 
 namespace masonry::test {
 

@@ -1,12 +1,13 @@
 // Case files: parsing, validation messages (one line naming file, block and field), interface
 // detection against hand-drawn geometry.
+#include "model/case.hpp"
+
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "model/case.hpp"
 #include "model/interfaces.hpp"
 
 namespace masonry {
@@ -63,9 +64,8 @@ TEST(CaseFile, TheIssueExampleParses) {
 }
 
 TEST(CaseFile, ClockwiseBlocksAreAccepted) {
-  const Case c = parse_case(with_blocks(std::string(kGround) +
-                                        R"(, {"id": "b", "vertices": [[0, 0], [0, 1], [0.5, 1], [0.5, 0]], "density": 1})"),
-                            "cw.json");
+  const Case c =
+      parse_case(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [0, 1], [0.5, 1], [0.5, 0]], "density": 1})"), "cw.json");
   EXPECT_GT(signed_area(c.blocks[1].vertices), 0);
   EXPECT_EQ(detect_interfaces(c, 1e-6).size(), 1u);
 }
@@ -107,9 +107,11 @@ TEST(CaseErrors, SelfIntersection) {
       v.push_back({bent && k == 1999 ? 0.0002 : x, bent && k == 1999 ? 0.05 : 0.1});
       v.push_back({x, 0.0});
     }
-    return nlohmann::json{{"format", "masonry-case/1"}, {"name", "t"},
-                          {"blocks", {{{"id", "ground"}, {"vertices", {{-1, -1}, {3, -1}, {3, -0.05}, {-1, -0.05}}}, {"support", true}},
-                                      {{"id", "comb"}, {"vertices", v}, {"density", 1}}}}}
+    return nlohmann::json{{"format", "masonry-case/1"},
+                          {"name", "t"},
+                          {"blocks",
+                           {{{"id", "ground"}, {"vertices", {{-1, -1}, {3, -1}, {3, -0.05}, {-1, -0.05}}}, {"support", true}},
+                            {{"id", "comb"}, {"vertices", v}, {"density", 1}}}}}
         .dump();
   };
   EXPECT_EQ(error_of(comb(false, false)), "");
@@ -118,18 +120,16 @@ TEST(CaseErrors, SelfIntersection) {
 }
 
 TEST(CaseErrors, OverlappingBlocks) {
-  expect_error(with_blocks(std::string(kGround) + kBlock +
-                           R"(, {"id": "b2", "vertices": [[0.5, 0.5], [1.5, 0.5], [1.5, 1.5], [0.5, 1.5]], "density": 1})"),
-               {"block 'b2'", "vertices", "overlaps block 'b'"});
+  expect_error(
+      with_blocks(std::string(kGround) + kBlock + R"(, {"id": "b2", "vertices": [[0.5, 0.5], [1.5, 0.5], [1.5, 1.5], [0.5, 1.5]], "density": 1})"),
+      {"block 'b2'", "vertices", "overlaps block 'b'"});
   // A copy of a block exactly on top of it overlaps too.
-  expect_error(with_blocks(std::string(kGround) + kBlock +
-                           R"(, {"id": "twin", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1})"),
+  expect_error(with_blocks(std::string(kGround) + kBlock + R"(, {"id": "twin", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1})"),
                {"block 'twin'", "overlaps"});
 }
 
 TEST(CaseErrors, BlockTouchingNothing) {
-  expect_error(with_blocks(std::string(kGround) + kBlock +
-                           R"(, {"id": "floating", "vertices": [[5, 5], [6, 5], [6, 6], [5, 6]], "density": 1})"),
+  expect_error(with_blocks(std::string(kGround) + kBlock + R"(, {"id": "floating", "vertices": [[5, 5], [6, 5], [6, 6], [5, 6]], "density": 1})"),
                {"block 'floating'", "vertices", "touches no other block"});
 }
 
@@ -151,8 +151,7 @@ TEST(CaseErrors, MotionOnAnUnknownBlock) {
 
 TEST(CaseErrors, NonFiniteNumbers) {
   // JSON has no NaN literal: it is a syntax error with a position.
-  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [NaN, 0], [1, 1]], "density": 1})"),
-               {"malformed JSON"});
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [NaN, 0], [1, 1]], "density": 1})"), {"malformed JSON"});
   // An overflowing literal is refused with its position.
   const std::string inf = with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1e999})");
   expect_error(inf, {"not a finite number"});
@@ -164,8 +163,7 @@ TEST(CaseErrors, NonPositiveDensityOrDepth) {
                {"block 'b'", "density", "outside (0, "});
   expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": -5})"),
                {"block 'b'", "density", "outside (0, "});
-  expect_error(with_blocks(std::string(kGround) +
-                           R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1, "depth": 0})"),
+  expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1, "depth": 0})"),
                {"block 'b'", "depth", "outside (0, "});
   expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]]})"),
                {"block 'b'", "density", "required"});
@@ -235,8 +233,8 @@ TEST(Interfaces, SplitEdgePiecesOfOnePairAreMerged) {
 TEST(Interfaces, GapsBeyondTheToleranceAreNotJoints) {
   const Case c = blocks_case(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1},
                                  {"id": "near", "vertices": [[1.001, 0], [2, 0], [2, 1], [1.001, 1]], "density": 1})");
-  EXPECT_EQ(detect_interfaces(c, 1e-4).size(), 2u);   // each on the ground, not to each other
-  EXPECT_EQ(detect_interfaces(c, 1e-2).size(), 3u);   // within a 1 cm tolerance they touch
+  EXPECT_EQ(detect_interfaces(c, 1e-4).size(), 2u);  // each on the ground, not to each other
+  EXPECT_EQ(detect_interfaces(c, 1e-2).size(), 3u);  // within a 1 cm tolerance they touch
 }
 
 TEST(Interfaces, WallOfBricksMatchesCounting) {
@@ -257,10 +255,9 @@ TEST(Interfaces, WallOfBricksMatchesCounting) {
     head += static_cast<int>(xs.size()) - 2;
     for (size_t k = 0; k + 1 < xs.size(); ++k) {
       const double y0 = 0.5 * r, y1 = 0.5 * (r + 1);
-      blocks += ", {\"id\": \"r" + std::to_string(r) + "b" + std::to_string(k) + "\", \"vertices\": [[" +
-                std::to_string(xs[k]) + "," + std::to_string(y0) + "],[" + std::to_string(xs[k + 1]) + "," +
-                std::to_string(y0) + "],[" + std::to_string(xs[k + 1]) + "," + std::to_string(y1) + "],[" +
-                std::to_string(xs[k]) + "," + std::to_string(y1) + "]], \"density\": 1}";
+      blocks += ", {\"id\": \"r" + std::to_string(r) + "b" + std::to_string(k) + "\", \"vertices\": [[" + std::to_string(xs[k]) + "," +
+                std::to_string(y0) + "],[" + std::to_string(xs[k + 1]) + "," + std::to_string(y0) + "],[" + std::to_string(xs[k + 1]) + "," +
+                std::to_string(y1) + "],[" + std::to_string(xs[k]) + "," + std::to_string(y1) + "]], \"density\": 1}";
     }
   }
   const Case c = blocks_case(blocks);
@@ -379,7 +376,12 @@ TEST(CaseErrors, QuantitiesOutsideTheirRangeAreRefusedNamingTheField) {
   }
   // Nothing loads the structure.
   refused([](nlohmann::json& d) { d["gravity"] = 0.0; }, "gravity");
-  EXPECT_NE(error_of([&] { nlohmann::json d = doc; d["gravity"] = 0.0; return d.dump(); }()).find("nothing loads"),
+  EXPECT_NE(error_of([&] {
+              nlohmann::json d = doc;
+              d["gravity"] = 0.0;
+              return d.dump();
+            }())
+                .find("nothing loads"),
             std::string::npos);
 }
 
@@ -398,7 +400,8 @@ TEST(CaseErrors, EchoedInputIsEscapedAndShortened) {
   EXPECT_LT(msg.size(), 300u) << msg.size();
   EXPECT_NE(msg.find("unknown field"), std::string::npos) << msg;
   EXPECT_NE(msg.find("(200000 characters)"), std::string::npos);
-  const std::string escaped = error_of(with_blocks(std::string(kGround) + R"(, {"id": "b\u001b[2J", "vertices": [[5, 5], [6, 5], [6, 6], [5, 6]], "density": 1})"));
+  const std::string escaped =
+      error_of(with_blocks(std::string(kGround) + R"(, {"id": "b\u001b[2J", "vertices": [[5, 5], [6, 5], [6, 6], [5, 6]], "density": 1})"));
   EXPECT_EQ(escaped.find('\x1b'), std::string::npos) << escaped;
   EXPECT_NE(escaped.find("block 'b\\x1b[2J'"), std::string::npos) << escaped;
 }
@@ -463,9 +466,9 @@ TEST(CaseErrors, TheTimestepFactorHasOneRangeForEveryCommand) {
 // than the tolerance: no joint, and the message says why instead of "touches no other block".
 TEST(CaseErrors, ABlockWhoseContactIsShorterThanTheToleranceIsToldSo) {
   const std::string thin = R"(, {"id": "needle", "vertices": [[0, 0], [1e-6, 0], [1e-6, 1], [0, 1]], "density": 2000})";
-  expect_error(with_blocks(std::string(kGround) + thin),
-               {"block 'needle'", "meets block 'ground' only at a point or over less than the contact tolerance (1e-05 m",
-                "the block is 1e-06 by 1 m"});
+  expect_error(
+      with_blocks(std::string(kGround) + thin),
+      {"block 'needle'", "meets block 'ground' only at a point or over less than the contact tolerance (1e-05 m", "the block is 1e-06 by 1 m"});
   // A triangle standing on its apex meets the ground at a point.
   expect_error(with_blocks(std::string(kGround) + R"(, {"id": "apex", "vertices": [[0, 0], [1, 1], [-1, 1]], "density": 2000})"),
                {"block 'apex'", "meets block 'ground' only at a point"});

@@ -1,11 +1,12 @@
 // The shared quantities of a configuration against closed forms: a block tipped about its corner,
 // a point load carried with it, and the scene's bounds.
+#include "model/energy.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "model/case.hpp"
-#include "model/energy.hpp"
 
 namespace masonry {
 namespace {

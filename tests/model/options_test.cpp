@@ -1,6 +1,8 @@
 // The options' table (model/options.cpp) drives the loader, the writer and README.md: the README's
 // table is the one it generates, the published schema states every row's type and range, the
 // loader refuses each bound the table gives, and the writer gives back every option it reads.
+#include "model/options.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <string>
 
 #include "common.hpp"
-#include "model/options.hpp"
 
 namespace masonry {
 namespace {
@@ -45,11 +46,16 @@ void expect_schema_agrees(const nlohmann::json& properties, const std::set<std::
     const OptionType type = std::visit(
         [](auto m) {
           using T = std::remove_cvref_t<decltype(std::declval<S>().*m)>;
-          if constexpr (std::is_same_v<T, int>) return OptionType::integer;
-          else if constexpr (std::is_same_v<T, bool>) return OptionType::boolean;
-          else if constexpr (std::is_same_v<T, HoldDamping>) return OptionType::word;
-          else if constexpr (std::is_same_v<T, std::vector<std::string>>) return OptionType::words;
-          else return OptionType::number;
+          if constexpr (std::is_same_v<T, int>)
+            return OptionType::integer;
+          else if constexpr (std::is_same_v<T, bool>)
+            return OptionType::boolean;
+          else if constexpr (std::is_same_v<T, HoldDamping>)
+            return OptionType::word;
+          else if constexpr (std::is_same_v<T, std::vector<std::string>>)
+            return OptionType::words;
+          else
+            return OptionType::number;
         },
         o.member);
     switch (type) {
@@ -102,8 +108,7 @@ void expect_bounds_refused(const Case& c) {
   const OptionSection<S>& sec = options<S>();
   for (const Option<S>& o : sec.rows) {
     const bool integer = std::holds_alternative<int S::*>(o.member);
-    if (!integer && !std::holds_alternative<double S::*>(o.member) && !std::holds_alternative<std::optional<double> S::*>(o.member))
-      continue;
+    if (!integer && !std::holds_alternative<double S::*>(o.member) && !std::holds_alternative<std::optional<double> S::*>(o.member)) continue;
     const std::string key = (*sec.name ? std::string(sec.name) + "." : std::string()) + o.name;
     std::vector<double> outside;
     if (std::isfinite(o.range.lo)) outside.push_back(o.range.lo_open ? o.range.lo : o.range.lo - std::max(1.0, std::abs(o.range.lo)));
@@ -172,7 +177,8 @@ TEST(Options, KeysAreSectionAndName) {
   std::set<std::string> keys, flags[3];
   for (const OptionInfo& i : option_infos()) {
     EXPECT_TRUE(keys.insert(i.key).second) << i.key << " twice";
-    for (OptionCommand k : i.commands) EXPECT_TRUE(flags[static_cast<int>(k)].insert(i.flag).second) << i.flag << " twice on " << option_command_name(k);
+    for (OptionCommand k : i.commands)
+      EXPECT_TRUE(flags[static_cast<int>(k)].insert(i.flag).second) << i.flag << " twice on " << option_command_name(k);
   }
 }
 

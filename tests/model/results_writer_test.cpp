@@ -19,9 +19,12 @@ std::vector<std::vector<std::string>> rfc4180(const std::string& text) {
   for (size_t i = 0; i < text.size(); ++i) {
     const char ch = text[i];
     if (quoted) {
-      if (ch == '"' && i + 1 < text.size() && text[i + 1] == '"') row.back() += '"', ++i;
-      else if (ch == '"') quoted = false;
-      else row.back() += ch;
+      if (ch == '"' && i + 1 < text.size() && text[i + 1] == '"')
+        row.back() += '"', ++i;
+      else if (ch == '"')
+        quoted = false;
+      else
+        row.back() += ch;
     } else if (ch == '"') {
       quoted = true;
     } else if (ch == ',') {

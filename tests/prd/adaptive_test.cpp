@@ -74,9 +74,7 @@ void expect_agrees_with_quarter_step(const std::string& name) {
 
 TEST(PrdAdaptive, PointedArchAgreesWithAQuarterStepRun) { expect_agrees_with_quarter_step("pointed-arch"); }
 TEST(PrdAdaptive, CathedralAgreesWithAQuarterStepRun) { expect_agrees_with_quarter_step("cathedral-settlement"); }
-TEST(PrdAdaptive, CathedralRotationAgreesWithAQuarterStepRun) {
-  expect_agrees_with_quarter_step("cathedral-settlement-rotation");
-}
+TEST(PrdAdaptive, CathedralRotationAgreesWithAQuarterStepRun) { expect_agrees_with_quarter_step("cathedral-settlement-rotation"); }
 
 // The arch has three mechanisms (three hinges at the start, the haunch hinge moving once,
 // collapse): the adaptive run needs at least three times fewer LPs than the fixed 1 mm run.

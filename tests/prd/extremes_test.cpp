@@ -136,10 +136,12 @@ TEST(PrdExtremes, AdaptiveRunsScaleKeepTheirToleranceAndTip) {
     EXPECT_NEAR(r.capacity, fine.capacity, 2 * tol + 2e-5) << tol;
   }
 
-  const Case c = parse_case(R"({"format": "masonry-case/1", "blocks": [{"id": "g", "vertices": [[-20, -1], [20, -1], [20, 0], [-20, 0]], "support": true},
+  const Case c =
+      parse_case(R"({"format": "masonry-case/1", "blocks": [{"id": "g", "vertices": [[-20, -1], [20, -1], [20, 0], [-20, 0]], "support": true},
       {"id": "b", "vertices": [[0, 0], [0.01, 0], [0.01, 1], [0, 1]], "density": 2000}],
       "motion": {"step": 1e-3, "max_steps": 1000, "supports": [{"block": "g", "rotation": 1.0, "about": [-20, -1]}]},
-      "prd": {"adaptive": true, "event_tolerance": 1e-6}})", "slender.json");
+      "prd": {"adaptive": true, "event_tolerance": 1e-6}})",
+                 "slender.json");
   const RunResult r = prd_run(c, PrdSettings::from_case(c));
   EXPECT_EQ(r.status, RunStatus::collapse) << r.message;
   EXPECT_LE(r.capacity, std::atan(0.01) + 1e-12);

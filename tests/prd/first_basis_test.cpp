@@ -19,10 +19,10 @@ using namespace prd_detail;
 
 struct FirstLp {
   LpStatus status;
-  double energy = 0;         // J per unit of h
-  double dual_energy = 0;    // the same from the duals (strong duality)
-  std::set<size_t> open;     // corners the step opens by more than 1e-6 h
-  std::set<size_t> moving;   // free blocks that move by more than 1e-6 h
+  double energy = 0;        // J per unit of h
+  double dual_energy = 0;   // the same from the duals (strong duality)
+  std::set<size_t> open;    // corners the step opens by more than 1e-6 h
+  std::set<size_t> moving;  // free blocks that move by more than 1e-6 h
   double lp_s = 0;
 };
 

@@ -35,8 +35,7 @@ TEST(PrdFirstStep, AHingeHeldClosedGivesTheMirrorMechanismAndAClosedCornerChange
   ASSERT_FALSE(free.opening.empty());
   EXPECT_LT(free.energy_change, 0);  // spreading supports let the arch down
   // The hinge that opens most, held closed: the structure must find another mechanism.
-  const auto widest = std::max_element(free.opening.begin(), free.opening.end(),
-                                       [](const auto& a, const auto& b) { return a.opening < b.opening; });
+  const auto widest = std::max_element(free.opening.begin(), free.opening.end(), [](const auto& a, const auto& b) { return a.opening < b.opening; });
   const FirstStep held = prd_first_step(c, c.prd.contact_tolerance, h, {widest->corner});
   ASSERT_TRUE(held.bounded);
   EXPECT_GE(held.energy_change, free.energy_change - 1e-9 * std::abs(free.energy_change));

@@ -82,8 +82,8 @@ TEST(PrdHold, HoldingACornerTheFreeRunNeverOpensChangesNothing) {
 
 TEST(PrdHold, ACornerNoJointHasIsRefusedNamingTheField) {
   const test::Scratch scratch("prd-hold");
-  const std::string cmd = std::string(MASONRY_EXE) + " prd " + kArch + " --hold v3/nowhere:A --out " + scratch.path.string() + " 2> " +
-                          (scratch.path / "err").string();
+  const std::string cmd =
+      std::string(MASONRY_EXE) + " prd " + kArch + " --hold v3/nowhere:A --out " + scratch.path.string() + " 2> " + (scratch.path / "err").string();
   EXPECT_EQ(test::run(cmd), 2);
   const std::string err = test::read(scratch.path / "err");
   EXPECT_NE(err.find("hold_closed"), std::string::npos) << err;

@@ -1,13 +1,14 @@
 // PRD solver tests. Every expected value comes from outside the solver: closed forms
 // (toppling at atan(b/h), Milankovitch's minimum thickness), equilibrium recomputed from the
 // reported forces, LP duality, and invariances (step, tolerance, scale, density).
+#include "prd/prd.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "cases/generators.hpp"
 #include "helpers.hpp"
-#include "prd/prd.hpp"
 
 namespace masonry {
 namespace {

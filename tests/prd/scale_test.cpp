@@ -52,8 +52,7 @@ TEST(PrdScale, TiltingBlockTopplesAtAtanBOverHForEveryDensityAndGravity) {
   for (double density : {1e-6, 1e-3, 1.0, 1e3, 1e5})
     for (double gravity : {1e-6, 1e-3, 1.0, 1e3}) {
       const Case c = with_weight_scale(base, density, gravity);
-      expect_same_run(ref, prd_run(c, PrdSettings::from_case(c)),
-                      "density " + std::to_string(density) + ", gravity " + std::to_string(gravity));
+      expect_same_run(ref, prd_run(c, PrdSettings::from_case(c)), "density " + std::to_string(density) + ", gravity " + std::to_string(gravity));
     }
 }
 
@@ -65,8 +64,7 @@ TEST(PrdScale, PointedArchCapacityIndependentOfTheWeightsScale) {
   for (double density : {1e-6, 1e-2, 1e5})
     for (double gravity : {1e-6, 1e-3, 1e3}) {
       const Case c = with_weight_scale(base, density, gravity);
-      expect_same_run(ref, prd_run(c, PrdSettings::from_case(c)),
-                      "density " + std::to_string(density) + ", gravity " + std::to_string(gravity));
+      expect_same_run(ref, prd_run(c, PrdSettings::from_case(c)), "density " + std::to_string(density) + ", gravity " + std::to_string(gravity));
     }
   for (double depth : {1e-9, 1e-3, 1e3}) {
     const Case c = with_weight_scale(base, 1800.0, 9.81, depth);

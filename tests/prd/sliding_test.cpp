@@ -35,14 +35,14 @@ Case inclined(double alpha, double b, double h, bool split, bool tilting) {
   } else {
     blocks.push_back({{"id", "ground"}, {"vertices", poly({{-2, -0.5}, {2, -0.5}, {2, 0}, {-2, 0}})}, {"support", true}});
   }
-  blocks.push_back({{"id", "block"}, {"vertices", poly({{-b / 2 + 0.1, 0}, {b / 2 + 0.1, 0}, {b / 2 + 0.1, h}, {-b / 2 + 0.1, h}})},
-                    {"density", 2000.0}});
+  blocks.push_back(
+      {{"id", "block"}, {"vertices", poly({{-b / 2 + 0.1, 0}, {b / 2 + 0.1, 0}, {b / 2 + 0.1, h}, {-b / 2 + 0.1, h}})}, {"density", 2000.0}});
   nlohmann::json motion = {{"step", 0.5 / kDeg}, {"max_steps", tilting ? 200 : 0}, {"supports", nlohmann::json::array()}};
   if (tilting)
     for (const auto& g : blocks)
       if (g.contains("support")) motion["supports"].push_back({{"block", g["id"]}, {"rotation", 1.0}, {"about", {0.0, 0.0}}});
-  nlohmann::json doc = {{"format", "masonry-case/1"}, {"name", "inclined block"}, {"blocks", blocks}, {"motion", motion},
-                        {"prd", {{"sliding_check", true}}}};
+  nlohmann::json doc = {
+      {"format", "masonry-case/1"}, {"name", "inclined block"}, {"blocks", blocks}, {"motion", motion}, {"prd", {{"sliding_check", true}}}};
   return parse_case(doc.dump(), "inclined-block.json");
 }
 

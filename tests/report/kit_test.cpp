@@ -48,9 +48,17 @@ TEST(ReportEscape, MarkupFromACaseIsText) {
 // ill-formed. Whatever the text, element and attribute content stays well-formed (expat).
 TEST(ReportEscape, XmlStaysWellFormedWhateverTheText) {
   const std::vector<std::string> texts = {
-      "v\x1b[31m3", std::string("nul\0byte", 8), "bell\a, bs\b, vt\v, ff\f", "tab\tnl\ncr\r", "\xff\xfe latin-1 \xe9t\xe9",
-      "cut \xc3", "overlong \xc0\xaf", "surrogate \xed\xa0\x80", "U+FFFF \xef\xbf\xbf and U+FFFE \xef\xbf\xbe",
-      "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\xa7\xb1", "<&\"'>",
+      "v\x1b[31m3",
+      std::string("nul\0byte", 8),
+      "bell\a, bs\b, vt\v, ff\f",
+      "tab\tnl\ncr\r",
+      "\xff\xfe latin-1 \xe9t\xe9",
+      "cut \xc3",
+      "overlong \xc0\xaf",
+      "surrogate \xed\xa0\x80",
+      "U+FFFF \xef\xbf\xbf and U+FFFE \xef\xbf\xbe",
+      "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\xa7\xb1",
+      "<&\"'>",
   };
   for (const std::string& t : texts) {
     const std::string doc = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg a=\"" + xml_escape(t) + "\"><title>" + xml_escape(t) + "</title></svg>";

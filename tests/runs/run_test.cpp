@@ -1,6 +1,8 @@
 // runs/: the one way to run a case. Its writing rule (every finished step reaches the directory,
 // the end always), its turning a refusal into a result for studies, and running many at once in
 // order.
+#include "runs/run.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -13,7 +15,6 @@
 #include "compare/compare.hpp"
 #include "model/case.hpp"
 #include "runs/parallel.hpp"
-#include "runs/run.hpp"
 
 namespace masonry {
 namespace {

@@ -1,13 +1,12 @@
 // `masonry sweep` as a command: a failing run is a row and the sweep goes on; a sweep killed half
 // way resumes with the missing runs only; a table of another sweep is refused unless --restart;
 // and the same sweep on 1 and 2 MPI ranks (mpirun on this machine) gives the same table.
+#include <fcntl.h>
 #include <gtest/gtest.h>
-
 #include <signal.h>
 #include <spawn.h>
 
 #include <chrono>
-#include <fcntl.h>
 #include <map>
 #include <set>
 #include <thread>
@@ -22,9 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kExe = MASONRY_EXE;
 
-std::string spec(const std::string& body) {
-  return R"({"format": "masonry-sweep/1", "case": ")" + test::kTiltCase + R"(", )" + body + "}";
-}
+std::string spec(const std::string& body) { return R"({"format": "masonry-sweep/1", "case": ")" + test::kTiltCase + R"(", )" + body + "}"; }
 
 // Data lines of a sweep.csv (complete lines only).
 std::vector<std::string> data_lines(const std::string& csv) {
@@ -45,8 +42,7 @@ TEST(SweepCommand, AFailedRunIsARowAndTheSweepGoesOn) {
   // runs fail, each with the first refusal of its values.
   test::write(d.path / "s.json", spec(R"("methods": ["dem"], "vary": {"dem.timestep_factor": [2.0, 0.2], "dem.friction_angle": [95, 30.5]})"));
   const fs::path out = d.path / "out", err = d.path / "err.txt";
-  EXPECT_EQ(test::run(kExe + " sweep " + (d.path / "s.json").string() + " --out " + out.string() + " 2>" + err.string()), 1)
-      << test::read(err);
+  EXPECT_EQ(test::run(kExe + " sweep " + (d.path / "s.json").string() + " --out " + out.string() + " 2>" + err.string()), 1) << test::read(err);
   const auto rows = test::csv_rows(test::read(out / "sweep.csv"));
   ASSERT_EQ(rows.size(), 5u) << test::read(out / "sweep.csv");
   const size_t st = test::column(rows[0], "stopped"), msg = test::column(rows[0], "message"), cap = test::column(rows[0], "capacity");
@@ -80,12 +76,10 @@ TEST(SweepCommand, AFailedRunIsARowAndTheSweepGoesOn) {
 // error, and is neither compared nor counted as done.
 TEST(SweepCommand, AnUndecidedDemRunIsAnUndecidedRow) {
   test::Scratch d("undecided");
-  test::write(d.path / "s.json",
-              spec(R"("methods": ["dem"], "set": {"dem.equilibrium_tolerance": 1e-16, "dem.hold_time": 1},
+  test::write(d.path / "s.json", spec(R"("methods": ["dem"], "set": {"dem.equilibrium_tolerance": 1e-16, "dem.hold_time": 1},
                       "vary": {"dem.friction_angle": [35]})"));
   const fs::path out = d.path / "out", err = d.path / "err.txt";
-  EXPECT_EQ(test::run(kExe + " sweep " + (d.path / "s.json").string() + " --out " + out.string() + " 2>" + err.string()), 1)
-      << test::read(err);
+  EXPECT_EQ(test::run(kExe + " sweep " + (d.path / "s.json").string() + " --out " + out.string() + " 2>" + err.string()), 1) << test::read(err);
   const auto rows = test::csv_rows(test::read(out / "sweep.csv"));
   ASSERT_EQ(rows.size(), 2u) << test::read(out / "sweep.csv");
   const size_t st = test::column(rows[0], "stopped"), msg = test::column(rows[0], "message");
@@ -137,8 +131,7 @@ TEST(SweepCommand, AKilledSweepResumesWithTheMissingRunsOnly) {
   for (int i = 0; i < int(n); ++i)
     if (!had.count(i)) missing.insert(i);
   EXPECT_EQ(test::runs_done(progress), missing) << progress;
-  EXPECT_NE(progress.find(std::to_string(had.size()) + " in " + csv + " already, " + std::to_string(missing.size()) + " to run"),
-            std::string::npos)
+  EXPECT_NE(progress.find(std::to_string(had.size()) + " in " + csv + " already, " + std::to_string(missing.size()) + " to run"), std::string::npos)
       << progress;
   // The rows from before the kill are kept as they were, run times included (a rerun would
   // have measured another time).
@@ -178,7 +171,8 @@ TEST(SweepCommand, OneAndTwoMpiRanksGiveTheSameTable) {
   const std::string s = (d.path / "s.json").string();
   test::write(s, spec(R"("vary": {"motion.step": [0.0174532925199433, 0.0349065850398866], "dem.friction_angle": [20.5, 30.5]})"));
   std::map<std::string, std::string> tables;
-  for (const auto& [name, launcher] : std::map<std::string, std::string>{{"local", ""}, {"np1", test::mpirun(1, d.path)}, {"np2", test::mpirun(2, d.path)}}) {
+  for (const auto& [name, launcher] :
+       std::map<std::string, std::string>{{"local", ""}, {"np1", test::mpirun(1, d.path)}, {"np2", test::mpirun(2, d.path)}}) {
     const std::string out = (d.path / name).string(), err = (d.path / (name + ".err")).string();
     ASSERT_EQ(test::run(launcher + kExe + " sweep " + s + " --out " + out + " </dev/null 2>" + err + " >/dev/null"), 0)
         << name << ": " << test::read(err);

@@ -1,9 +1,10 @@
 // The fuzz test of the sweep's ways in: seeded mutations (tests/fuzz.hpp) of the example sweep
 // file, planned against its case, and of a sweep.csv being resumed. A mutant is planned or
 // refused with one line naming the file; a resumed table keeps only rows a run could have given.
+#include "fuzz.hpp"
+
 #include <gtest/gtest.h>
 
-#include "fuzz.hpp"
 #include "util.hpp"
 
 namespace masonry {

@@ -112,7 +112,8 @@ TEST(SweepPlan, OnlyRunsThoseSamplesOfTheSameDesign) {
   const std::string ranges = R"("ranges": {"generator.thickness": [0.1, 0.2], "generator.radius": [0.5, 2]})";
   const std::string arch = R"("case": {"generator": "circular-arch", "parameters": {"voussoirs": 20}}, )";
   const SweepPlan all = plan_of(arch + R"("methods": ["prd", "dem"], "sample": {"count": 10, "seed": 9, )" + ranges + "}}");
-  const SweepPlan some = plan_of(arch + R"("methods": ["prd", "dem"], "sample": {"count": 10, "seed": 9, "one_at_a_time": 0, "only": [7, 2], )" + ranges + "}}");
+  const SweepPlan some =
+      plan_of(arch + R"("methods": ["prd", "dem"], "sample": {"count": 10, "seed": 9, "one_at_a_time": 0, "only": [7, 2], )" + ranges + "}}");
   ASSERT_EQ(some.runs.size(), 4u);  // PRD and DEM of samples 2 and 7
   for (const SweepRun& r : some.runs) {
     ASSERT_EQ(r.point, SweepPoint::sample);

@@ -59,7 +59,7 @@ TEST(Sensitivity, ArchCapacityGrowsWithThicknessAndIsZeroBelowMilankovitch) {
   }
   const json& e = s["methods"]["prd"]["parameters"]["generator.thickness"];
   EXPECT_GT(e["elasticity"].get<double>(), 1.0) << e;  // more than in proportion: zero at the least thickness
-  EXPECT_EQ(e["n"], 4);                                 // the runs above the least thickness
+  EXPECT_EQ(e["n"], 4);                                // the runs above the least thickness
   EXPECT_EQ(s["methods"]["prd"]["zero_capacity"], 3);
   // Every run collapses by a mechanism of at least four hinges (a three-hinged arch is statically
   // determinate: it stands; Heyman 1966), and the groups of hinge sets hold every run.
@@ -182,7 +182,8 @@ TEST(Sensitivity, PrdAgainstDemPerSampleWithEveryRunKept) {
   EXPECT_TRUE(fs::exists(d.path / "out" / "figures" / "prd-dem.svg"));
   // Every run kept; a sample's PRD and DEM runs open with compare --runs, their capacities the rows'.
   for (size_t i = 1; i < rows.size(); ++i)
-    for (const char* f : {"case.json", "results.json", "steps.csv"}) EXPECT_TRUE(fs::exists(d.path / "out" / "runs" / rows[i][ic] / f)) << rows[i][ic] << f;
+    for (const char* f : {"case.json", "results.json", "steps.csv"})
+      EXPECT_TRUE(fs::exists(d.path / "out" / "runs" / rows[i][ic] / f)) << rows[i][ic] << f;
   const json& first = s["prd_dem"][0];
   const fs::path prd = d.path / "out" / "runs" / rows.at(first["prd_run"].get<int>() + 1)[ic];
   const fs::path dem = d.path / "out" / "runs" / rows.at(first["dem_run"].get<int>() + 1)[ic];

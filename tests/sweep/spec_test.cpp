@@ -162,7 +162,8 @@ TEST(SweepTable, ReadsBackWhatItWrites) {
   t[1] = row(p, 1, RunStatus::collapse, 0.3490658503988659);
   t[2] = row(p, 2, RunStatus::error, 0, "dem: bad, \"very\" bad");
   const std::string csv = sweep_csv(p, t);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "run,id,method,dem.friction_angle,capacity,stopped,time_s,diff_prd,required_friction_angle,hinges,message");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "run,id,method,dem.friction_angle,capacity,stopped,time_s,diff_prd,required_friction_angle,hinges,message");
   const SweepTable back = read_sweep_csv(p, csv, "sweep.csv");
   ASSERT_EQ(back.size(), 4u);
   for (int i = 0; i < 3; ++i) {

@@ -4,7 +4,6 @@
 // the closed forms put it.
 #include <gtest/gtest.h>
 
-
 #include "util.hpp"
 
 namespace masonry {

@@ -11,21 +11,20 @@
 #include <string>
 #include <vector>
 
-#include "model/case.hpp"
 #include "common.hpp"
+#include "model/case.hpp"
 #include "sweep/sweep.hpp"
 
 namespace masonry::test {
-
 
 inline const std::string kTiltCase = std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json";
 
 // The tilting block's closed form, from the case file's own geometry: a block b wide and h high
 // slides when the tilt reaches phi if tan(phi) < b/h and topples at atan(b/h) otherwise.
 struct TiltBlock {
-  double b = 0, h = 0;     // m
-  double rate = 0;         // rad of tilt per m of d (the slab's rotation rate)
-  double increment = 0;    // rad of tilt per step
+  double b = 0, h = 0;   // m
+  double rate = 0;       // rad of tilt per m of d (the slab's rotation rate)
+  double increment = 0;  // rad of tilt per step
   double topple() const { return std::atan(b / h); }
   // The collapse tilt for friction angle phi (rad): the smaller of phi and the toppling angle.
   double collapse(double phi) const { return std::tan(phi) < b / h ? phi : topple(); }
@@ -55,9 +54,12 @@ inline std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
     std::vector<std::string> f(1);
     bool quoted = false;
     for (char ch : line) {
-      if (ch == '"') quoted = !quoted;
-      else if (ch == ',' && !quoted) f.emplace_back();
-      else f.back() += ch;
+      if (ch == '"')
+        quoted = !quoted;
+      else if (ch == ',' && !quoted)
+        f.emplace_back();
+      else
+        f.back() += ch;
     }
     rows.push_back(f);
   }

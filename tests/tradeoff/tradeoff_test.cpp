@@ -1,6 +1,8 @@
 // The trade-off measurement: plan parsing (one-line errors naming the file and field), the
 // Pareto front on hand-made points (closed forms), and PRD end to end on a block toppling off a
 // tilting support, where the capacity for each step is known in closed form.
+#include "tradeoff/tradeoff.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include "common.hpp"
 #include "compare/compare.hpp"
 #include "prd/prd.hpp"
-#include "tradeoff/tradeoff.hpp"
 
 namespace masonry {
 namespace {
@@ -152,9 +153,16 @@ TEST(TradeoffPlan, ValuesTheCaseRefusesFailBeforeAnyRun) {
 
 TEST(TradeoffPareto, HandMadePoints) {
   const double nan = std::nan("");
-  const std::vector<ParetoPoint> pts = {
-      {1, 0.5}, {2, 0.2}, {3, 0.3} /* dominated by 1 */, {4, 0.0}, {0.5, 1.0}, {2, 0.2} /* twin of 1 */,
-      {nan, 0.1}, {5, 0.0} /* dominated by 3 */, {0.5, 2.0} /* dominated by 4 */, {0.1, nan}};
+  const std::vector<ParetoPoint> pts = {{1, 0.5},
+                                        {2, 0.2},
+                                        {3, 0.3} /* dominated by 1 */,
+                                        {4, 0.0},
+                                        {0.5, 1.0},
+                                        {2, 0.2} /* twin of 1 */,
+                                        {nan, 0.1},
+                                        {5, 0.0} /* dominated by 3 */,
+                                        {0.5, 2.0} /* dominated by 4 */,
+                                        {0.1, nan}};
   const std::vector<size_t> front = pareto_front(pts);
   EXPECT_EQ(front, (std::vector<size_t>{4, 0, 1, 3}));
   // Steps along the front: 4 -> 0 buys 0.5 for 0.5 s, 0 -> 1 buys 0.3 for 1 s, 1 -> 3 buys 0.2
@@ -214,7 +222,8 @@ TEST(TradeoffErrors, ThrustsAreComparedWhereBothRunsAreRecorded) {
   o.thrust_grid = ThrustGrid::coarser_run;
   const Comparison coarser = compare_runs(c, fine, coarse, o);
   EXPECT_EQ(coarser.thrust_max_diff, 0.0);
-  EXPECT_EQ(coarser.d.size(), size_t(std::count_if(coarse.steps.begin(), coarse.steps.end(), [&](const StepRecord& s) { return s.d <= coarser.d_max; })));
+  EXPECT_EQ(coarser.d.size(),
+            size_t(std::count_if(coarse.steps.begin(), coarse.steps.end(), [&](const StepRecord& s) { return s.d <= coarser.d_max; })));
   EXPECT_EQ(compare_runs(c, coarse, fine, o).thrust_max_diff, 0.0);  // whichever comes first
 }
 
@@ -244,7 +253,8 @@ TEST(TradeoffSummary, AStepAlongTheFrontReadsAsTheErrorFallingForExtraTime) {
   EXPECT_EQ(all.find("points of"), std::string::npos) << all;
   EXPECT_EQ(all.find("per s)"), std::string::npos) << all;
   EXPECT_EQ(all.find("->"), std::string::npos) << all;
-  EXPECT_NE(all.find("the fastest setting within 1% in capacity and 0.0100 W in thrust of the reference is fast (0.0038 s"), std::string::npos) << all;
+  EXPECT_NE(all.find("the fastest setting within 1% in capacity and 0.0100 W in thrust of the reference is fast (0.0038 s"), std::string::npos)
+      << all;
 }
 
 // ---- End to end ------------------------------------------------------------------------------
@@ -361,8 +371,8 @@ TEST(TradeoffCommand, WritesEveryFileWithoutNaN) {
   write(d / "tilt.json", kTiltCase);
   write(d / "plan.json", kTiltPlan);
   const std::string out = (d / "out").string();
-  const std::string cmd = std::string(MASONRY_EXE) + " tradeoff " + (d / "tilt.json").string() + " --out " + out +
-                          " --methods prd --plan " + (d / "plan.json").string() + " --repeat 1 --quiet";
+  const std::string cmd = std::string(MASONRY_EXE) + " tradeoff " + (d / "tilt.json").string() + " --out " + out + " --methods prd --plan " +
+                          (d / "plan.json").string() + " --repeat 1 --quiet";
   ASSERT_EQ(run(cmd + " 2>/dev/null"), 0) << cmd;
   for (const char* f : {"tradeoff.csv", "tradeoff.json", "report.md", "report.html", "figures/pareto-prd.svg"}) {
     SCOPED_TRACE(f);

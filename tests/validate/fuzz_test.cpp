@@ -1,9 +1,10 @@
 // The fuzz test of the catalogue format (masonry-catalogue/1): seeded mutations (tests/fuzz.hpp)
 // of the built-in catalogue. A mutant parses or is refused with one line naming the file.
+#include "fuzz.hpp"
+
 #include <gtest/gtest.h>
 
 #include "common.hpp"
-#include "fuzz.hpp"
 #include "validate/catalogue.hpp"
 
 namespace masonry {

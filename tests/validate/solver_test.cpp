@@ -43,7 +43,8 @@ std::string row(const std::string& table, const std::string& benchmark) {
 TEST(ValidateSolver, TheExampleSolverPassesAndACopyTenPercentOffFails) {
   Scratch dir("validate-solver-example");
   const std::string only = " --only block-topples block-reaction block-slides block-least-friction";
-  const Outcome ok = validate(dir, "--solver '" + kPython + " " + kSource + "/examples/toppling_solver.py {case} {out}' --solver-name toppling-py" + only);
+  const Outcome ok =
+      validate(dir, "--solver '" + kPython + " " + kSource + "/examples/toppling_solver.py {case} {out}' --solver-name toppling-py" + only);
   EXPECT_EQ(ok.rc, 0) << ok.out << ok.err;
   EXPECT_NE(row(ok.out, "block-topples").find("toppling-py"), std::string::npos) << ok.out;
   EXPECT_NE(row(ok.out, "block-topples").find("pass"), std::string::npos) << ok.out;
@@ -54,7 +55,8 @@ TEST(ValidateSolver, TheExampleSolverPassesAndACopyTenPercentOffFails) {
   EXPECT_NE(row(ok.out, "block-least-friction").find("n/a"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("2 of 2 passed, 2 not applicable"), std::string::npos) << ok.out;
 
-  const Outcome wrong = validate(dir, "--solver '" + kPython + " " + kSource + "/tests/validate/wrong_toppling_solver.py {case} {out}' --solver-name wrong-py" + only);
+  const Outcome wrong =
+      validate(dir, "--solver '" + kPython + " " + kSource + "/tests/validate/wrong_toppling_solver.py {case} {out}' --solver-name wrong-py" + only);
   EXPECT_EQ(wrong.rc, 1) << wrong.out << wrong.err;
   EXPECT_NE(wrong.out.find("FAIL block-topples (wrong-py): expected capacity 0.463648 +- 0.001 m"), std::string::npos) << wrong.out;
   EXPECT_NE(wrong.out.find("obtained 0.5093"), std::string::npos) << wrong.out;  // 1.1 x its 0.463
@@ -106,16 +108,18 @@ TEST(ValidateSolver, AThresholdRunsTheSolverAtEveryBisectionPoint) {
   Scratch dir("validate-solver-threshold");
   // A solver that reads the case (stands when dem.friction_angle >= 25 degrees) and counts its runs.
   const std::string solver = (dir.path / "friction.py").string(), calls = (dir.path / "calls").string();
-  test::write(solver, "import json, os, sys\n"
-                      "case = json.load(open(sys.argv[1]))\n"
-                      "open(sys.argv[3], 'a').write('%r\\n' % case['motion']['max_steps'])\n"
-                      "stands = case['dem']['friction_angle'] >= 25\n"
-                      "json.dump({'format': 'masonry-results/1', 'method': 'friction', 'case': case['name'], 'capacity': 0.0,\n"
-                      "           'stopped': 'max_steps' if stands else 'collapse', 'steps': [{'step': 0, 'd': 0.0}] if stands else []},\n"
-                      "          open(os.path.join(sys.argv[2], 'results.json'), 'w'))\n");
+  test::write(solver,
+              "import json, os, sys\n"
+              "case = json.load(open(sys.argv[1]))\n"
+              "open(sys.argv[3], 'a').write('%r\\n' % case['motion']['max_steps'])\n"
+              "stands = case['dem']['friction_angle'] >= 25\n"
+              "json.dump({'format': 'masonry-results/1', 'method': 'friction', 'case': case['name'], 'capacity': 0.0,\n"
+              "           'stopped': 'max_steps' if stands else 'collapse', 'steps': [{'step': 0, 'd': 0.0}] if stands else []},\n"
+              "          open(os.path.join(sys.argv[2], 'results.json'), 'w'))\n");
   const std::string cat = (dir.path / "cat.json").string();
   test::write(cat, R"({"format": "masonry-catalogue/1", "benchmarks": [{"name": "phi", "title": "t", "source": "by construction",
-    "case": {"file": ")" + kSource + R"(/cases/tilting-block.json"}, "quantity": "threshold",
+    "case": {"file": ")" +
+                       kSource + R"(/cases/tilting-block.json"}, "quantity": "threshold",
     "search": {"parameter": "dem.friction_angle", "range": [10, 40], "resolution": 1}, "expected": 25,
     "methods": {"prd": {"tolerance": {"absolute": 1, "why": "the bisection's resolution"}}}}]})");
   const Outcome o = validate(dir, "--catalogue " + cat + " --solver '" + kPython + " " + solver + " {case} {out} " + calls + "'");

@@ -2,13 +2,14 @@
 // that cannot be met fails, expected values from another method), and the command's exit codes.
 // The physics of the built-in catalogue is checked by running it: CI runs `masonry validate
 // --quick` (.ci/run); here only its cheapest entries run.
+#include "validate/validate.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "common.hpp"
-#include "validate/validate.hpp"
 
 namespace masonry {
 namespace {
@@ -21,8 +22,7 @@ const std::string kExe = MASONRY_EXE;
 std::string block_file() { return std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json"; }
 
 // A catalogue with one benchmark on the tilting block's capacity: toppling at atan(b/h).
-std::string one_benchmark(const std::string& methods, const std::string& expected = "0.4636476090008061",
-                          const std::string& extra = "") {
+std::string one_benchmark(const std::string& methods, const std::string& expected = "0.4636476090008061", const std::string& extra = "") {
   return R"x({"format": "masonry-catalogue/1", "benchmarks": [{"name": "topple", "title": "Toppling.",
     "source": "closed form atan(b/h)", "case": {"file": ")x" +
          block_file() + R"("}, "quantity": "capacity", "expected": )" + expected + extra + R"(, "methods": )" + methods + "}]}";
@@ -97,16 +97,14 @@ TEST(ValidateCatalogue, RefusesWithOneLineNamingFileBenchmarkAndField) {
 TEST(ValidateRun, ATightToleranceFailsAndTheOtherMethodCanBeTheReference) {
   // PRD's capacity is the last stable step, 26 degrees = 0.4538 rad, one step below atan(0.5):
   // inside a tolerance of one step (0.0175 rad), outside one of 1e-6.
-  const Catalogue cat = parse_catalogue(
-      one_benchmark(R"({"prd": {"tolerance": {"absolute": 0.0175, "why": "one step"}}})"), "a.json", ".");
+  const Catalogue cat = parse_catalogue(one_benchmark(R"({"prd": {"tolerance": {"absolute": 0.0175, "why": "one step"}}})"), "a.json", ".");
   RunCache cache;
   auto rows = run_benchmark(cat, cat.benchmarks[0], cache);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_TRUE(rows[0].pass) << rows[0].note;
   EXPECT_NEAR(rows[0].obtained, 26 * M_PI / 180, 1e-9);
 
-  const Catalogue tight = parse_catalogue(
-      one_benchmark(R"({"prd": {"tolerance": {"absolute": 1e-6, "why": "impossible"}}})"), "b.json", ".");
+  const Catalogue tight = parse_catalogue(one_benchmark(R"({"prd": {"tolerance": {"absolute": 1e-6, "why": "impossible"}}})"), "b.json", ".");
   rows = run_benchmark(tight, tight.benchmarks[0], cache);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_FALSE(rows[0].pass);
@@ -115,8 +113,8 @@ TEST(ValidateRun, ATightToleranceFailsAndTheOtherMethodCanBeTheReference) {
   EXPECT_NE(why.find("closed form atan(b/h)"), std::string::npos) << why;
 
   // The DEM judged against PRD on the same case: the two methods agree within one step.
-  const Catalogue vs = parse_catalogue(
-      one_benchmark(R"({"dem": {"tolerance": {"absolute": 0.0175, "why": "one step"}}})", R"({"method": "prd"})"), "c.json", ".");
+  const Catalogue vs =
+      parse_catalogue(one_benchmark(R"({"dem": {"tolerance": {"absolute": 0.0175, "why": "one step"}}})", R"({"method": "prd"})"), "c.json", ".");
   rows = run_benchmark(vs, vs.benchmarks[0], cache);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].expected_from, "PRD on the same case");
@@ -127,7 +125,8 @@ TEST(ValidateRun, ATightToleranceFailsAndTheOtherMethodCanBeTheReference) {
 TEST(ValidateRun, ASearchThatDoesNotBracketTheThresholdFailsWithAReason) {
   // The block stands whatever its density: no threshold within the range.
   const std::string text = R"({"format": "masonry-catalogue/1", "benchmarks": [{"name": "density", "title": "t",
-    "source": "s", "case": {"file": ")" + block_file() + R"("}, "options": {"motion.max_steps": 0},
+    "source": "s", "case": {"file": ")" +
+                           block_file() + R"("}, "options": {"motion.max_steps": 0},
     "quantity": "threshold", "search": {"parameter": "blocks_density_is_not_an_option", "range": [1, 2], "resolution": 0.1},
     "expected": 1.5, "methods": {"prd": {"tolerance": {"absolute": 0.1, "why": "x"}}}}]})";
   const Catalogue cat = parse_catalogue(text, "d.json", ".");
@@ -167,9 +166,7 @@ TEST(ValidateCommand, ExitCodesTablesAndFiles) {
   // Two cheap built-in benchmarks pass: exit 0, the table, the JSON and Markdown files.
   const std::string json = (dir.path / "v.json").string(), md = (dir.path / "v.md").string();
   const std::string out = (dir.path / "out").string(), err = (dir.path / "err").string();
-  EXPECT_EQ(test::run(kExe + " validate --only block-topples arch-stands --json " + json + " --markdown " + md + " >" + out +
-                      " 2>" + err),
-            0);
+  EXPECT_EQ(test::run(kExe + " validate --only block-topples arch-stands --json " + json + " --markdown " + md + " >" + out + " 2>" + err), 0);
   const std::string table = test::read(out);
   EXPECT_NE(table.find("4 of 4 passed"), std::string::npos) << table;
   EXPECT_NE(table.find("source"), std::string::npos);
