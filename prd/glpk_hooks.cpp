@@ -41,7 +41,17 @@ void on_error(void*) {
 
 }  // namespace
 
+// GLPK keeps one environment per thread (thread-local storage) and nothing frees it when the
+// thread ends: every worker thread of a sweep would leave its own behind (LeakSanitizer found
+// the one of a test's second thread). Each thread that installs the hooks frees its environment
+// when it exits; by then every problem it made is gone (GlpProblem is scoped to a run).
+struct FreeEnvAtThreadExit {
+  ~FreeEnvAtThreadExit() { glp_free_env(); }
+};
+
 void install_glpk_hooks() {
+  thread_local FreeEnvAtThreadExit free_at_exit;
+  (void)free_at_exit;
   if (installed) return;
   glp_term_hook(on_terminal, nullptr);
   glp_error_hook(on_error, nullptr);
