@@ -8,12 +8,15 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <type_traits>
+#include <variant>
 
 #include "app/command.hpp"
 #include "cases/dxf.hpp"
 #include "cases/generators.hpp"
 #include "cases/parameters.hpp"
 #include "cases/show.hpp"
+#include "cases/wall_fields.hpp"
 #include "model/results.hpp"
 
 namespace masonry {
@@ -102,34 +105,22 @@ void add_case_commands(CLI::App& app, Commands& out) {
                                       "Brick wall in running, stack or header bond, with openings under lintels or arches, on two ground blocks; "
                                       "one settles or turns (cases/README.md, 'Brick wall')");
     g->add_option("--out,-o", *file, "Case file to write ('-': standard output)")->required();
-    g->add_option("--bond", p->bond, "running, stack or header")
-        ->transform(CLI::CheckedTransformer(
-            std::map<std::string, WallBond>{{"running", WallBond::running}, {"stack", WallBond::stack}, {"header", WallBond::header}}))
-        ->default_str("running");
-    g->add_option("--courses", p->courses, "Number of courses")->capture_default_str();
-    g->add_option("--bricks", p->bricks, "Units per course: stretchers, or headers in header bond")->capture_default_str();
-    g->add_option("--brick-length", p->brick_length, "Stretcher length, m")->capture_default_str();
-    g->add_option("--header-length", p->header_length, "Header face length (the brick's width), m; header bond")->capture_default_str();
-    g->add_option("--course-height", p->course_height, "Course height, m")->capture_default_str();
-    g->add_option("--depth", p->depth, "Out-of-plane thickness of the wall, m")->capture_default_str();
-    g->add_option("--density", p->density, "Density, kg/m3")->capture_default_str();
-    g->add_option("--opening", *openings,
-                  "An opening X,SILL,WIDTH,HEIGHT[,lintel|arch] (m from the wall's left end and base; sill and top move to the "
-                  "nearest course joint; default top: lintel); repeatable");
-    g->add_option("--lintel-bearing", p->lintel_bearing, "A lintel's bearing on each side of its opening, m")->capture_default_str();
-    g->add_option("--arch-thickness", p->arch_thickness, "Thickness of an arch's ring, m")->capture_default_str();
-    g->add_option("--arch-voussoirs", p->arch_voussoirs, "Voussoirs of each arch (0: about one per course height)")->capture_default_str();
-    g->add_option("--ground-height", p->ground_height, "Height of the two ground blocks, m")->capture_default_str();
-    g->add_option("--ground-split", p->ground_split, "Where the ground splits, m from the wall's left end (default: the middle)");
-    g->add_option("--moving", p->moving, "Which ground block moves: left, right or none")
-        ->transform(CLI::CheckedTransformer(
-            std::map<std::string, MovingGround>{{"none", MovingGround::none}, {"left", MovingGround::left}, {"right", MovingGround::right}}))
-        ->default_str("right");
-    g->add_option("--settlement-step", p->settlement_step, "Settlement of the moving ground per step, m (down)")->capture_default_str();
-    g->add_option("--rotation-step", p->rotation_step, "Counter-clockwise rotation of the moving ground per step, rad, about the split's top point")
-        ->capture_default_str();
-    g->add_option("--step", p->step, "Path parameter d per step, m")->capture_default_str();
-    g->add_option("--max-steps", p->max_steps, "Largest number of steps")->capture_default_str();
+    for (const WallField& f : wall_fields()) {
+      const std::string flag = std::string("--") + f.name;
+      std::visit(
+          [&](auto member) {
+            using T = std::remove_reference_t<decltype(p.get()->*member)>;
+            CLI::Option* o = g->add_option(flag, p.get()->*member, f.help);
+            if constexpr (std::is_same_v<T, WallBond>)
+              o->transform(CLI::CheckedTransformer(wall_bond_words()))->default_str(wall_bond_name(p.get()->*member));
+            else if constexpr (std::is_same_v<T, MovingGround>)
+              o->transform(CLI::CheckedTransformer(moving_ground_words()))->default_str(moving_ground_name(p.get()->*member));
+            else if (f.show_default)
+              o->capture_default_str();
+          },
+          f.member);
+    }
+    g->add_option(std::string("--") + kWallOpeningName, *openings, kWallOpeningHelp);
     GeneratorCommand& gc = gens->emplace_back();
     gc.app = g;
     gc.name = "wall";

@@ -19,6 +19,7 @@
 
 #include "cases/generators.hpp"
 #include "cases/parameters.hpp"
+#include "cases/wall_fields.hpp"
 #include "compare/compare.hpp"
 #include "compare/report.hpp"
 #include "model/case.hpp"
@@ -292,77 +293,10 @@ py::dict run_sweep_file(const std::string& spec, const std::string& dir, int job
   return out;
 }
 
-// `masonry cases wall`: its options are not a parameter table (a bond and openings are words),
-// so the module reads them here by the command's option names, with its defaults.
-Case wall_case(const nlohmann::json& v) {
-  BrickWall p;
-  const std::string where = "generate('wall')";
-  const auto number = [&](const std::string& key, const nlohmann::json& x) {
-    if (!x.is_number()) throw CaseError(where + ": parameter '" + key + "' must be a number");
-    return x.get<double>();
-  };
-  const auto whole = [&](const std::string& key, const nlohmann::json& x) {
-    if (!x.is_number_integer()) throw CaseError(where + ": parameter '" + key + "' must be a whole number");
-    return x.get<int>();
-  };
-  const auto word = [&](const std::string& key, const nlohmann::json& x, std::initializer_list<const char*> allowed) {
-    if (x.is_string())
-      for (const char* a : allowed)
-        if (x.get<std::string>() == a) return x.get<std::string>();
-    std::string list;
-    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-    throw CaseError(where + ": parameter '" + key + "' must be one of " + list);
-  };
-  for (auto it = v.begin(); it != v.end(); ++it) {
-    const std::string& k = it.key();
-    const nlohmann::json& x = it.value();
-    if (k == "bond") {
-      const std::string b = word(k, x, {"running", "stack", "header"});
-      p.bond = b == "stack" ? WallBond::stack : b == "header" ? WallBond::header : WallBond::running;
-    } else if (k == "moving") {
-      const std::string b = word(k, x, {"none", "left", "right"});
-      p.moving = b == "none" ? MovingGround::none : b == "left" ? MovingGround::left : MovingGround::right;
-    } else if (k == "opening") {  // one "X,SILL,WIDTH,HEIGHT[,lintel|arch]" or a list of them
-      for (const nlohmann::json& o : x.is_array() ? x : nlohmann::json::array({x})) {
-        if (!o.is_string()) throw CaseError(where + ": parameter 'opening' must be \"X,SILL,WIDTH,HEIGHT[,lintel|arch]\" or a list of them");
-        p.openings.push_back(parse_wall_opening(o.get<std::string>()));
-      }
-    } else if (k == "courses")
-      p.courses = whole(k, x);
-    else if (k == "bricks")
-      p.bricks = whole(k, x);
-    else if (k == "arch-voussoirs")
-      p.arch_voussoirs = whole(k, x);
-    else if (k == "max-steps")
-      p.max_steps = whole(k, x);
-    else if (k == "brick-length")
-      p.brick_length = number(k, x);
-    else if (k == "header-length")
-      p.header_length = number(k, x);
-    else if (k == "course-height")
-      p.course_height = number(k, x);
-    else if (k == "depth")
-      p.depth = number(k, x);
-    else if (k == "density")
-      p.density = number(k, x);
-    else if (k == "lintel-bearing")
-      p.lintel_bearing = number(k, x);
-    else if (k == "arch-thickness")
-      p.arch_thickness = number(k, x);
-    else if (k == "ground-height")
-      p.ground_height = number(k, x);
-    else if (k == "ground-split")
-      p.ground_split = number(k, x);
-    else if (k == "settlement-step")
-      p.settlement_step = number(k, x);
-    else if (k == "rotation-step")
-      p.rotation_step = number(k, x);
-    else if (k == "step")
-      p.step = number(k, x);
-    else
-      throw CaseError(where + ": no parameter '" + printable(k) + "' (masonry cases wall --help)");
-  }
-  const Case c = brick_wall(p);
+// `masonry cases wall`: its parameters are words and lists as well as numbers, so they have a
+// table of their own (cases/wall_fields.hpp), read here as the command line reads it.
+Case wall_case(const nlohmann::json& values) {
+  const Case c = brick_wall(wall_parameters(values, "generate('wall')"));
   return parse_case(case_to_json(c), "generator wall");  // the file `masonry cases wall` writes must load: so must this
 }
 

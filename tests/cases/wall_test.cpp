@@ -4,10 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
 
 #include "case_checks.hpp"
 #include "cases/generators.hpp"
+#include "cases/wall_fields.hpp"
 #include "model/interfaces.hpp"
 #include "prd/prd.hpp"
 
@@ -128,6 +133,49 @@ TEST(Wall, BadOpeningsAreRefusedNamingThem) {
   EXPECT_THROW(parse_wall_opening("1,2,3"), CaseError);
   EXPECT_THROW(parse_wall_opening("1,2,3,x"), CaseError);
   EXPECT_THROW(parse_wall_opening("1,2,3,4,vault"), CaseError);
+}
+
+// Each row of the parameter table sets its own member, under its own name: setting every field
+// to a value other than its default changes each member once, and each refusal names its field.
+TEST(Wall, EveryParameterSetsItsOwnMemberAndBadValuesNameIt) {
+  std::set<std::string> names;
+  nlohmann::json values = nlohmann::json::object();
+  for (const WallField& f : wall_fields()) {
+    EXPECT_TRUE(names.insert(f.name).second) << f.name << " twice";
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_reference_t<decltype(BrickWall{}.*member)>;
+          if constexpr (std::is_same_v<T, WallBond>)
+            values[f.name] = "header";
+          else if constexpr (std::is_same_v<T, MovingGround>)
+            values[f.name] = "none";
+          else
+            values[f.name] = BrickWall{}.*member + 7;
+        },
+        f.member);
+  }
+  const BrickWall d, p = wall_parameters(values, "test");
+  int changed = 0;
+  for (const WallField& f : wall_fields()) std::visit([&](auto member) { changed += !(p.*member == d.*member); }, f.member);
+  EXPECT_EQ(changed, static_cast<int>(wall_fields().size()));
+  EXPECT_EQ(p.bond, WallBond::header);
+  EXPECT_EQ(p.courses, d.courses + 7);
+  EXPECT_EQ(p.moving, MovingGround::none);
+  EXPECT_EQ(wall_parameters({{"opening", {"0.5,0.25,0.5,0.5,arch", "2,0.25,0.5,0.5"}}}, "t").openings.size(), 2u);
+  for (const auto& [bad, field] :
+       std::vector<std::pair<nlohmann::json, std::string>>{{{{"bond", "flemish"}}, "'bond' must be one of header, running, stack"},
+                                                           {{{"courses", 2.5}}, "'courses' must be a whole number"},
+                                                           {{{"depth", "thick"}}, "'depth' must be a number"},
+                                                           {{{"colour", 1}}, "no parameter 'colour'"},
+                                                           {{{"opening", 3}}, "'opening' must be"}}) {
+    try {
+      wall_parameters(bad, "generate('wall')");
+      ADD_FAILURE() << bad.dump() << " accepted";
+    } catch (const CaseError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind("generate('wall'): ", 0), 0u) << e.what();
+    }
+  }
 }
 
 }  // namespace

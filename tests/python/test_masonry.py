@@ -211,7 +211,7 @@ class Generators(unittest.TestCase):
         self.assertEqual(case.blocks[1]["vertices"].shape[1], 2)
 
     def test_the_wall_generator_equals_the_command_line(self):
-        # Its options are words and lists (bond, openings), not a parameter table: read by their names.
+        # Its parameters are words and lists as well as numbers (cases/wall_fields.hpp), read by their names.
         case = masonry.generate("wall", courses=12, bricks=8, bond="stack", opening=["0.75,0.25,0.5,0.5,arch"], moving="left")
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "wall.json")
