@@ -35,8 +35,9 @@ const RunResult& run_method(const Case& c, Method m, RunCache& cache) {
   return it->second;
 }
 
-std::string run_failure(const RunResult& r) {
-  return "the " + std::string(r.method) + " run stopped: " + status_name(r.status) + (r.message.empty() ? "" : " (" + r.message + ")");
+// `who` names the run: the method's name, or an outside solver's --solver-name.
+std::string run_failure(const RunResult& r, const std::string& who) {
+  return "the " + who + " run stopped: " + status_name(r.status) + (r.message.empty() ? "" : " (" + r.message + ")");
 }
 
 // Whether the structure stands as it is: PRD's one analysis, or the DEM settling under gravity
@@ -47,7 +48,7 @@ Measured stands(Case c, Method m) {
   const RunResult r = run_case(c, Method::dem);
   if (r.status == RunStatus::max_steps) return {true, 1.0, ""};
   if (r.status == RunStatus::collapse) return {true, 0.0, ""};
-  return fail(run_failure(r));
+  return fail(run_failure(r, method_name(m)));
 }
 
 // Bisection on the searched parameter for where the structure starts (or stops) standing;
@@ -146,7 +147,7 @@ Measured measure(const Catalogue& cat, const Benchmark& b, Method m, RunCache& c
   if (b.quantity == Quantity::stands) return stands(c, m);
   if (b.quantity == Quantity::least_friction_angle) c.prd.sliding_check = true;
   const RunResult& r = run_method(c, m, cache);
-  if (r.status == RunStatus::error || r.status == RunStatus::undecided) return fail(run_failure(r));
+  if (r.status == RunStatus::error || r.status == RunStatus::undecided) return fail(run_failure(r, method_name(m)));
   return from_run(b, c, r);
 }
 
@@ -169,9 +170,9 @@ const RunResult* outside_run(const OutsideSolver& s, const Case& c, const Benchm
 }
 
 // A run that stopped by error is the solver's error; undecided is no answer (a failed row).
-std::optional<Measured> outside_failure(const RunResult& r) {
-  if (r.status == RunStatus::error) return solver_error(run_failure(r));
-  if (r.status == RunStatus::undecided || r.status == RunStatus::running) return fail(run_failure(r));
+std::optional<Measured> outside_failure(const RunResult& r, const OutsideSolver& s) {
+  if (r.status == RunStatus::error) return solver_error(run_failure(r, s.name));
+  if (r.status == RunStatus::undecided || r.status == RunStatus::running) return fail(run_failure(r, s.name));
   return std::nullopt;
 }
 
@@ -182,7 +183,7 @@ Measured outside_stands(const OutsideSolver& s, Case c, const Benchmark& b, RunC
   std::string why;
   const RunResult* r = outside_run(s, c, b, cache, why);
   if (!r) return solver_error(why);
-  if (const auto f = outside_failure(*r)) return *f;
+  if (const auto f = outside_failure(*r, s)) return *f;
   return {true, r->status == RunStatus::max_steps ? 1.0 : 0.0, ""};
 }
 
@@ -199,7 +200,7 @@ Measured measure_outside(const Catalogue& cat, const Benchmark& b, const Outside
   std::string why;
   const RunResult* r = outside_run(s, c, b, cache, why);
   if (!r) return solver_error(why);
-  if (const auto f = outside_failure(*r)) return *f;
+  if (const auto f = outside_failure(*r, s)) return *f;
   return from_run(b, c, *r);
 }
 

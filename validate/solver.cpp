@@ -114,7 +114,13 @@ RunResult run_outside(const OutsideSolver& s, const Case& c, const std::string& 
   if (e.status != 0) throw std::runtime_error("the solver exited with status " + std::to_string(e.status) + tail + "; its files: " + dir.string());
   const fs::path results = out / "results.json";
   if (!fs::exists(results)) throw std::runtime_error("the solver wrote no {out}/results.json (" + results.string() + ")" + tail);
-  return load_results(results.string(), c);
+  RunResult r = load_results(results.string(), c);
+  // A results file of another case (a copy left from an earlier run, a hard-coded name) would
+  // be judged as this case's answer.
+  if (r.case_name != c.name)
+    throw std::runtime_error(results.string() + ": field 'case' is '" + printable(r.case_name) + "', not the case the solver was given ('" + c.name +
+                             "')");
+  return r;
 }
 
 }  // namespace masonry

@@ -81,17 +81,23 @@ TEST(ValidateSolver, ASolverThatFailsGivesAnErrorRowWithTheReason) {
       {"true", "the solver wrote no {out}/results.json"},
       {"sleep 20", "the solver ran past 0.5 s (--solver-timeout) and was stopped"},
       // The reader's line: the file and the JSON path.
-      {writes("a.json", R"({"format": "masonry-results/1", "method": "x", "case": "c", "stopped": "collapse", "steps": []})"),
+      {writes("a.json", R"j({"format": "masonry-results/1", "method": "x", "case": "c", "stopped": "collapse", "steps": []})j"),
        "results.json: results: field 'capacity' is required"},
-      {writes("b.json", R"({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0.5, "stopped": "collapse",
-                            "steps": [{"step": 0, "d": 0}, {"step": 1, "d": 0.1}]})"),
+      {writes("b.json", R"j({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0.5, "stopped": "collapse",
+                            "steps": [{"step": 0, "d": 0}, {"step": 1, "d": 0.1}]})j"),
        "results.json: results: field 'capacity' = 0.5 m is outside [0, the last step's d = 0.1 m]"},
-      {writes("c.json", R"({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0, "stopped": "collapse",
-                            "steps": [{"step": 0, "d": 0, "reactions": [{"support": "block", "force": [0, 1]}]}]})"),
+      {writes("c.json", R"j({"format": "masonry-results/1", "method": "x", "case": "tilting block (b = 0.2 m, h = 0.4 m)", "capacity": 0,
+                            "stopped": "collapse", "steps": [{"step": 0, "d": 0, "reactions": [{"support": "block", "force": [0, 1]}]}]})j"),
        "results.json: steps[0].reactions[0]: field 'support': block \"block\" is not a support of the case"},
-      {writes("d.json", R"({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0, "stopped": "error",
-                            "message": "no convergence", "steps": []})"),
-       "run stopped: error (no convergence)"},
+      // The run's own error, named by --solver-name (here its default, "solver"), not by the
+      // method the file names.
+      {writes("d.json", R"j({"format": "masonry-results/1", "method": "x", "case": "tilting block (b = 0.2 m, h = 0.4 m)", "capacity": 0,
+                            "stopped": "error", "message": "no convergence", "steps": []})j"),
+       "the solver run stopped: error (no convergence)"},
+      // Results of another case are not this case's answer.
+      {writes("e.json", R"j({"format": "masonry-results/1", "method": "x", "case": "pointed arch", "capacity": 0, "stopped": "collapse",
+                            "steps": [{"step": 0, "d": 0}]})j"),
+       "results.json: field 'case' is 'pointed arch', not the case the solver was given ('tilting block (b = 0.2 m, h = 0.4 m)')"},
   };
   for (const Case_& c : cases) {
     const Outcome o = validate(dir, "--solver '" + c.command + "' --solver-timeout 0.5 --only block-topples");
