@@ -70,6 +70,23 @@ TEST(SweepCommand, AFailedRunIsARowAndTheSweepGoesOn) {
   EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 1) << e;
 }
 
+// The tilting block's support only turns, so its path parameter and capacities are in rad:
+// the progress lines, the report and its figures say so, and never call them m.
+TEST(SweepCommand, ATurningSupportsCapacitiesAreInRad) {
+  test::Scratch d("rad");
+  test::write(d.path / "s.json", spec(R"("methods": ["prd"], "vary": {"motion.step": [0.017453292519943295, 0.008726646259971648]})"));
+  const fs::path out = d.path / "out", err = d.path / "err.txt";
+  ASSERT_EQ(test::run(kExe + " sweep " + (d.path / "s.json").string() + " --out " + out.string() + " 2>" + err.string()), 0) << test::read(err);
+  const std::string progress = test::read(err), report = test::read(out / "report.md"), figure = test::read(out / "figures" / "capacity.svg");
+  EXPECT_NE(progress.find(" rad in "), std::string::npos) << progress;
+  EXPECT_NE(report.find("capacity (rad)"), std::string::npos) << report;
+  EXPECT_NE(figure.find("last stable d (rad)"), std::string::npos) << figure;
+  for (const std::string* text : {&progress, &report, &figure}) {
+    EXPECT_EQ(text->find("(m)"), std::string::npos) << *text;
+    EXPECT_EQ(text->find(" m in "), std::string::npos) << *text;
+  }
+}
+
 // A DEM run whose hold neither settles nor runs away (an equilibrium tolerance of 1e-16 of the
 // weight, below the round-off of the joint forces, so the settled block never counts as at rest
 // while its motion dies out) is listed as undecided with the DEM's reason, not turned into an
