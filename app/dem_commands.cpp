@@ -89,7 +89,8 @@ int run_study(const Case& c, const DemSettings& base, Study kind, const Opts& o)
     ++done;
     if (o.quiet) return;
     char b[160];
-    std::snprintf(b, sizeof b, "%s: %s, capacity %.6g m, %.3g s CPU", variants[i].name.c_str(), status_name(r.status), r.capacity, r.timing.total_s);
+    std::snprintf(b, sizeof b, "%s: %s, capacity %.6g %s, %.3g s CPU", variants[i].name.c_str(), status_name(r.status), r.capacity,
+                  path_unit(c).c_str(), r.timing.total_s);
     std::cerr << progress.line(done, b) << "\n" << std::flush;
   });
   for (size_t i = 0; i < variants.size(); ++i) {

@@ -16,6 +16,9 @@ using ojson = nlohmann::ordered_json;
 
 std::string pct(double x) { return fmt::pct(x, 2); }
 
+// The unit of d and of the capacities: rad where every moving support only turns.
+std::string d_unit(const Convergence& c) { return c.scene ? path_unit(*c.scene) : "m"; }
+
 // A joint counts in the partings when it is open wider than this fraction of the scene: a gap a
 // drawing of the mechanism shows, well above the elastic gaps of settling under gravity.
 constexpr double kOpenOfScene = 5e-5;
@@ -111,10 +114,11 @@ ConvergenceVerdict judge(const Convergence& c) {
     // The two ends of the spread, and what PRD says of each one's deformed configuration: a run
     // that PRD on its own geometry follows differs by that geometry (dem/README.md, "What the
     // compliance costs"), not by its protocol.
-    const auto end = [](const ConvergenceEntry& e) {
-      std::string s = e.name + " (" + e.what + "): " + fmt::number(e.run.capacity, "%.4f m", e.run.capacity);
+    const std::string u = " " + d_unit(c);
+    const auto end = [&](const ConvergenceEntry& e) {
+      std::string s = e.name + " (" + e.what + "): " + fmt::number(e.run.capacity, "%.4f", e.run.capacity) + u;
       if (e.prd_on_run && std::isfinite(e.prd_on_run->kept))
-        s += " (PRD on its deformed configuration: " + fmt::number(e.prd_on_run->kept, "%.4f m", e.prd_on_run->kept) + ", " +
+        s += " (PRD on its deformed configuration: " + fmt::number(e.prd_on_run->kept, "%.4f", e.prd_on_run->kept) + u + ", " +
              pct((e.prd_on_run->kept - e.run.capacity) / e.run.capacity) + ")";
       return s;
     };
@@ -195,7 +199,9 @@ std::string convergence_markdown(const Convergence& c) {
          "Capacity: the last equilibrium before the collapse, bracketed (dem/README.md)."});
   }
   Table t;
-  t.head = {"run", "what differs", "stopped", "capacity (m)", "against default", "against PRD", "bracket (mm)", "CPU (s)", "cycles"};
+  t.head = {
+      "run",     "what differs", "stopped", "capacity (" + d_unit(c) + ")", "against default", "against PRD", "bracket (" + milli(d_unit(c)) + ")",
+      "CPU (s)", "cycles"};
   t.align = {Align::left, Align::left, Align::left, Align::right, Align::right, Align::right, Align::right, Align::right, Align::right};
   if (stiffness) {
     t.head.insert(t.head.begin() + 2, "kn (Pa/m)");
@@ -233,10 +239,11 @@ std::string convergence_markdown(const Convergence& c) {
   const auto has = [](const ConvergenceEntry& e) { return e.prd_on_run.has_value(); };
   if (const auto first = std::find_if(c.entries.begin(), c.entries.end(), has); first != c.entries.end()) {
     Text intro{Cell("PRD on each run's deformed configuration", CellStyle::strong), ": "};
-    for (Cell& x : prd_on_run_explained(first->prd_on_run->tolerance, c.scene ? milli(path_unit(*c.scene)) : "mm")) intro.push_back(std::move(x));
+    for (Cell& x : prd_on_run_explained(first->prd_on_run->tolerance, milli(d_unit(c)))) intro.push_back(std::move(x));
     d.paragraph(std::move(intro));
     Table g;
-    g.head = {"run", "from d (m)", "capacity (m)", "PRD, offsets kept (m)", "against the run", "PRD, taken back (m)", "against the run"};
+    const std::string u = " (" + d_unit(c) + ")";
+    g.head = {"run", "from d" + u, "capacity" + u, "PRD, offsets kept" + u, "against the run", "PRD, taken back" + u, "against the run"};
     g.align = {Align::left, Align::right, Align::right, Align::right, Align::right, Align::right, Align::right};
     for (const ConvergenceEntry& e : c.entries) {
       if (!e.prd_on_run) continue;
@@ -247,13 +254,14 @@ std::string convergence_markdown(const Convergence& c) {
     }
     d.table(std::move(g));
     d.paragraph({"PRD from the case's own geometry, its events located to the same tolerance: " +
-                 fmt::number(first->prd_on_run->own, "%.4f m", first->prd_on_run->own) + "."});
+                 fmt::number(first->prd_on_run->own, "%.4f", first->prd_on_run->own) + " " + d_unit(c) + "."});
   }
   // "The default" is the case's settings as the command changed them (a stiffness, a hold cap,
   // a number of increments): the settings its run recorded make the study reproducible.
   if (!c.entries.empty() && !c.entries.front().run.settings.empty())
     d.paragraph({"The default's DEM settings (its results.json): ", Cell(c.entries.front().run.settings.dump(), CellStyle::code)});
-  d.paragraph({"PRD capacity: " + (c.prd_capacity ? fmt::number(*c.prd_capacity, "%.4f m", *c.prd_capacity) : std::string("not run")) + "."});
+  d.paragraph(
+      {"PRD capacity: " + (c.prd_capacity ? fmt::number(*c.prd_capacity, "%.4f", *c.prd_capacity) + " " + d_unit(c) : std::string("not run")) + "."});
   if (!stiffness)
     d.paragraph({"Spread (largest minus smallest capacity, over the default's): " +
                  (std::isfinite(v.spread) ? fmt::number(100 * v.spread, "%.2f%%", 100 * v.spread) : std::string("n/a")) + " (limit " +
@@ -270,9 +278,9 @@ std::string convergence_markdown(const Convergence& c) {
       items.push_back(
           {{who + ": " +
             (!p ? "no parting from " + other + " for good (open joints that differ, if any, close again before the end of the common range)"
-                : "from d = " + fmt::number(p->d, "%.4f", p->d) + " m, open only here: " + joined(p->only_a) + "; only in " + other + ": " +
-                      joined(p->only_b) + ". At d = " + fmt::number(p->end_d, "%.4f", p->end_d) +
-                      " m, the end of the common range, only here: " + joined(p->end_only_a) + "; only in " + other + ": " + joined(p->end_only_b))},
+                : "from d = " + fmt::number(p->d, "%.4f", p->d) + " " + d_unit(c) + ", open only here: " + joined(p->only_a) + "; only in " + other +
+                      ": " + joined(p->only_b) + ". At d = " + fmt::number(p->end_d, "%.4f", p->end_d) + " " + d_unit(c) +
+                      ", the end of the common range, only here: " + joined(p->end_only_a) + "; only in " + other + ": " + joined(p->end_only_b))},
            {}});
     };
     if (stiffness) {

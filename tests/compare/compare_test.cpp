@@ -505,6 +505,15 @@ TEST(Convergence, ASpreadOfTheJointsAloneIsConvergedOverTheProtocol) {
   EXPECT_NEAR(b.protocol_spread, 0.03, 1e-12);
   EXPECT_STREQ(verdict_name(Study::convergence, b), "NOT shown converged");
   EXPECT_NE(convergence_markdown(study(1.03)).find("**Not shown converged**"), std::string::npos);
+  // With a scene whose moving support only turns, capacities and brackets are in rad and mrad.
+  const Case tilt = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json");
+  Convergence turning = study(1.03);
+  turning.scene = &tilt;
+  const std::string md = convergence_markdown(turning);
+  EXPECT_NE(md.find("capacity (rad)"), std::string::npos) << md;
+  EXPECT_NE(md.find("bracket (mrad)"), std::string::npos) << md;
+  EXPECT_EQ(md.find("(m)"), std::string::npos) << md;
+  EXPECT_NE(convergence_markdown(study(1.03)).find("capacity (m)"), std::string::npos);
 
   // A stiffness study varies only the joints: no protocol spread to report.
   Convergence k = study(1.005);
