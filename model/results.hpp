@@ -81,10 +81,10 @@ struct HeldCorner {
   double force = 0.0;  // N, negative: a tension
 };
 
-// The DEM's hold that ended a record (dem/README.md, "The quasi-static protocol"): how it ended
+// The DEM's hold that ended a record (dem/README.md, "Protocol: every recorded state is an equilibrium or a collapse"): how it ended
 // and what it cost. The names are the fields results.json writes in the step.
 // What a hold that did not settle travelled over the first and the second half of its last cap
-// (dem/README.md, "Creep, undecided and the limit point"): m, the largest block displacement.
+// (dem/README.md, "At the cap: creep or still settling"): m, the largest block displacement.
 struct CapTravel {
   double first_half = 0.0, second_half = 0.0;
 };
