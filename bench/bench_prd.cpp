@@ -21,6 +21,7 @@ masonry::Case standard(const std::string& name) { return masonry::load_case(std:
 void count_run(benchmark::State& state, const masonry::RunResult& r, double first_lp_s) {
   state.counters["capacity_m"] = r.capacity;
   state.counters["lp_solves"] = static_cast<double>(r.timing.lp_solves);
+  state.counters["kept_basis_solves"] = static_cast<double>(r.timing.kept_basis_solves);
   state.counters["total_s"] = r.timing.total_s;
   state.counters["lp_s"] = r.timing.lp_s;
   state.counters["first_lp_s"] = first_lp_s;

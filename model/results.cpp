@@ -166,6 +166,7 @@ ojson to_json(const RunResult& r, const Case& c) {
   if (known_method(r) == Method::prd) {
     t["lp_s"] = json_number(r.timing.lp_s);
     t["lp_solves"] = r.timing.lp_solves;
+    t["kept_basis_solves"] = r.timing.kept_basis_solves;
     t["basis_evaluations"] = r.timing.basis_evaluations;
   } else {
     t["cycles"] = r.timing.cycles;

@@ -128,8 +128,10 @@ struct JointInfo {
 
 struct Timing {
   double total_s = 0.0;  // the run's thread CPU time without I/O (PRD and DEM)
-  double lp_s = 0.0;     // PRD: CPU time in GLPK
+  double lp_s = 0.0;     // PRD: CPU time solving LPs (GLPK, and the kept basis)
   long long lp_solves = 0;
+  // PRD: of those, the LPs solved by the previous LP's basis without GLPK (prd/kept_basis.hpp).
+  long long kept_basis_solves = 0;
   // PRD (event-driven): evaluations of an LP's final basis at another configuration (where a
   // planned move would end) without simplex iterations, one factorisation each; their time is
   // in lp_s.

@@ -18,6 +18,7 @@
 #include "model/io.hpp"
 #include "model/results.hpp"
 #include "prd/glpk_hooks.hpp"
+#include "prd/kept_basis.hpp"
 #include "prd/prd.hpp"
 
 namespace masonry::prd_detail {
@@ -55,6 +56,10 @@ struct Endpoint {
   bool held = false;  // kept closed whatever the loads do (PrdOptions::hold_closed): its row an equality
 };
 
+// Whether solve() tries the kept basis before GLPK (kept_basis.hpp). Always on in the solver;
+// tests turn it off on their thread to compare with GLPK's simplex on every LP, the reference.
+inline thread_local bool t_use_kept_basis = true;
+
 // From this many free blocks up a run's first LP starts from GLPK's advanced basis (solve).
 constexpr int kAdvancedBasisBlocks = 300;
 // How the first solve of a model starts: GLPK's advanced basis from kAdvancedBasisBlocks free
@@ -78,10 +83,20 @@ struct Model {
   GlpProblem lp;
   bool fresh = true;             // not solved yet (solve)
   std::vector<double> row_coef;  // per LP row: its entry count and coefficients as GLPK holds them (update_lp)
+  std::vector<int> row_cols;     // per LP row: the columns of those coefficients (6 per row)
+  std::vector<double> row_lb;    // per LP row: its lower bound (the fixed value of a fixed row)
+  std::vector<char> row_type;    // per LP row: GLP_FR, GLP_LO or GLP_FX
+  std::vector<double> obj_coef;  // per column (1-based): the objective's coefficient
+  // update_lp writes the LP here; sync_glpk gives GLPK what changed when GLPK is asked.
+  std::vector<char> row_dirty;  // per LP row: coefficients GLPK does not hold yet
+  std::vector<int> dirty_rows;  // those rows
+  bool glpk_behind = false;     // bounds and objective not given to GLPK yet
+  KeptBasis kept;               // the basis of the last GLPK solve, for the next (kept_basis.hpp)
   FirstBasis first_basis = FirstBasis::by_size;
   double lp_s = 0;
   long long lp_solves = 0;
   long long basis_evaluations = 0;
+  long long kept_basis_solves = 0;  // LPs solved by the kept basis, without GLPK (kept_basis.hpp)
 
   Vec2 pos(int b, const Vec2& X) const { return cen[b] + rot(angle[b]) * (X - c0[b]); }
   Vec2 normal(const Endpoint& e) const { return rot(angle[joints[e.joint].i]) * joints[e.joint].normal; }
@@ -189,6 +204,7 @@ constexpr double kDeg = 180.0 / 3.14159265358979323846;
 Model build_model(const Case& c, double tol);
 std::vector<double> generalised_loads(const Model& m);  // N (and N m / L_b)
 void update_lp(Model& m, double h, double scale, double h_open = 0);
+void sync_glpk(Model& m);
 LpStatus solve(Model& m);
 double objective(const Model& m);               // of the last solve: N times the columns' unit (x the LP's scale: J)
 double col_value(const Model& m, int j);        // column j's primal value (1-based)

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "prd/internal.hpp"
+#include "prd/kept_basis.hpp"
 
 namespace masonry::prd_detail {
 
@@ -91,16 +92,23 @@ void update_lp(Model& m, double h, double scale, double h_open) {
   // GLPK aborts the process on a non-finite or zero scale; this is the one place to stop it.
   if (!(scale > 0) || !std::isfinite(scale) || !(h >= 0) || !std::isfinite(h))
     throw std::logic_error(std::string("prd: invalid step for the LP (m): ").append(std::to_string(h)));
-  glp_prob* lp = m.lp.get();
   const std::vector<double> f = generalised_loads(m);
-  for (int j = 1; j <= m.ncols; ++j) glp_set_obj_coef(lp, j, -f[j] / m.force_unit);
+  m.obj_coef.assign(m.ncols + 1, 0.0);
+  for (int j = 1; j <= m.ncols; ++j) m.obj_coef[j] = -f[j] / m.force_unit;
+  m.glpk_behind = true;
   std::vector<Increment> inc(m.c->blocks.size());
   for (size_t b = 0; b < inc.size(); ++b)
     if (m.col[b] < 0) inc[b] = support_increment(m, static_cast<int>(b), h);
 
   int ind[7];
   double val[7];
-  if (m.row_coef.empty()) m.row_coef.assign(7 * 2 * m.ends.size(), -1.0);  // count -1: not written yet
+  if (m.row_coef.empty()) {
+    m.row_coef.assign(7 * 2 * m.ends.size(), -1.0);  // count -1: not written yet
+    m.row_cols.assign(6 * 2 * m.ends.size(), 0);
+    m.row_lb.assign(2 * m.ends.size(), 0.0);
+    m.row_type.assign(2 * m.ends.size(), GLP_FR);
+    m.row_dirty.assign(2 * m.ends.size(), 0);
+  }
   for (size_t e = 0; e < m.ends.size(); ++e) {
     const Endpoint& ep = m.ends[e];
     const Interface& jt = m.joints[ep.joint];
@@ -133,27 +141,50 @@ void update_lp(Model& m, double h, double scale, double h_open) {
       bool same = held[0] == cnt;
       for (int k = 1; same && k <= cnt; ++k) same = held[k] == val[k];
       if (!same) {
-        glp_set_mat_row(lp, row, cnt, ind, val);
         held[0] = cnt;
-        for (int k = 1; k <= cnt; ++k) held[k] = val[k];
+        for (int k = 1; k <= cnt; ++k) held[k] = val[k], m.row_cols[6 * (row - 1) + k - 1] = ind[k];
+        if (!m.row_dirty[row - 1]) m.row_dirty[row - 1] = 1, m.dirty_rows.push_back(row);
       }
       if (r == 0) {
         double gap = (pj - pi).dot(n);
         if (!ep.closed && h_open > 0 && h_open < h) gap *= h / h_open;
         // A held corner's gap is closed at the end of every step: no opening, and a tension if
         // the loads ask for one.
-        const double lb = (-gap - known) / scale;
-        glp_set_row_bnds(lp, row, ep.held ? GLP_FX : GLP_LO, lb, ep.held ? lb : 0);
+        m.row_lb[row - 1] = (-gap - known) / scale, m.row_type[row - 1] = ep.held ? GLP_FX : GLP_LO;
       } else if (m.sliding_row(e)) {
         // The tangential offset left by earlier finite updates is taken back here, so that
         // the drift of a closed corner never accumulates over the run.
         const double slip = (pj - pi).dot(t);
-        glp_set_row_bnds(lp, row, GLP_FX, (-slip - known) / scale, (-slip - known) / scale);
+        m.row_lb[row - 1] = (-slip - known) / scale, m.row_type[row - 1] = GLP_FX;
       } else {
-        glp_set_row_bnds(lp, row, GLP_FR, 0, 0);
+        m.row_lb[row - 1] = 0, m.row_type[row - 1] = GLP_FR;
       }
     }
   }
+}
+
+// Gives GLPK the LP update_lp made: the rows whose coefficients changed, every bound and the
+// objective. Deferred to where GLPK is asked (solve, evaluate_basis), since most LPs are solved
+// by the kept basis without it (kept_basis.hpp).
+void sync_glpk(Model& m) {
+  if (!m.glpk_behind) return;
+  glp_prob* lp = m.lp.get();
+  for (int j = 1; j <= m.ncols; ++j) glp_set_obj_coef(lp, j, m.obj_coef[j]);
+  int ind[7];
+  double val[7];
+  for (int row : m.dirty_rows) {
+    const double* held = &m.row_coef[7 * (row - 1)];
+    const int cnt = static_cast<int>(held[0]);
+    for (int k = 1; k <= cnt; ++k) ind[k] = m.row_cols[6 * (row - 1) + k - 1], val[k] = held[k];
+    glp_set_mat_row(lp, row, cnt, ind, val);
+    m.row_dirty[row - 1] = 0;
+  }
+  m.dirty_rows.clear();
+  for (size_t i = 0; i < m.row_type.size(); ++i) {
+    const double lb = m.row_lb[i];
+    glp_set_row_bnds(lp, static_cast<int>(i) + 1, m.row_type[i], lb, m.row_type[i] == GLP_FX ? lb : 0);
+  }
+  m.glpk_behind = false;
 }
 
 // GLPK's solves, where the numbers can fail its internal checks: guarded, so that such a failure
@@ -203,6 +234,14 @@ LpStatus solve(Model& m) {
   // cathedral's aisles: 1.3% of the weight apart; mechanisms and capacities are the same from
   // either start, tests/prd/first_basis_test.cpp).
   const bool advanced = m.first_basis == FirstBasis::advanced || (m.first_basis == FirstBasis::by_size && m.ncols >= 3 * kAdvancedBasisBlocks);
+  // Most LPs after the first are solved by the basis of the one before (kept_basis.hpp).
+  if (!m.fresh && t_use_kept_basis && solve_by_kept_basis(m)) {
+    m.lp_s += seconds_since(t0);
+    ++m.lp_solves;
+    ++m.kept_basis_solves;
+    return LpStatus::optimal;
+  }
+  sync_glpk(m);
   if (m.fresh && advanced) quiet_adv_basis(lp);
   m.fresh = false;
   int rc = simplex(lp, parm);
@@ -215,6 +254,7 @@ LpStatus solve(Model& m) {
     quiet_adv_basis(lp);
     rc = exact(lp, parm);
   }
+  keep_basis(m);
   m.lp_s += seconds_since(t0);
   ++m.lp_solves;
   if (!conclusive(rc)) throw std::runtime_error("GLPK could not solve the step's LP (code " + std::to_string(rc) + ")");
@@ -225,17 +265,19 @@ LpStatus solve(Model& m) {
   }
 }
 
-double objective(const Model& m) { return glp_get_obj_val(m.lp.get()) * m.force_unit; }
-double col_value(const Model& m, int j) { return glp_get_col_prim(m.lp.get(), j); }
-double corner_force(const Model& m, size_t e) { return glp_get_row_dual(m.lp.get(), 2 * static_cast<int>(e) + 1) * m.force_unit; }
+// The last solve's values: GLPK's, or those of the kept basis where that solved it.
+double row_prim(const Model& m, int row) { return m.kept.own ? kept_row(m, row) : glp_get_row_prim(m.lp.get(), row); }
+double row_dual(const Model& m, int row) { return m.kept.own ? kept_dual(m, row) : glp_get_row_dual(m.lp.get(), row); }
+double objective(const Model& m) { return (m.kept.own ? kept_objective(m) : glp_get_obj_val(m.lp.get())) * m.force_unit; }
+double col_value(const Model& m, int j) { return m.kept.own ? kept_col(m, j) : glp_get_col_prim(m.lp.get(), j); }
+double corner_force(const Model& m, size_t e) { return row_dual(m, 2 * static_cast<int>(e) + 1) * m.force_unit; }
 double corner_slack(const Model& m, size_t e) {
   const int row = 2 * static_cast<int>(e) + 1;
-  return glp_get_row_prim(m.lp.get(), row) - glp_get_row_lb(m.lp.get(), row);
+  return row_prim(m, row) - m.row_lb[row - 1];
 }
 
 // Forces from the row duals: joint resultants and support reactions, on the current geometry.
 void read_forces(const Model& m, StepRecord& rec) {
-  glp_prob* lp = m.lp.get();
   const Case& c = *m.c;
   std::vector<Reaction> reac;
   std::vector<int> reac_of(c.blocks.size(), -1);
@@ -253,7 +295,7 @@ void read_forces(const Model& m, StepRecord& rec) {
       const size_t e = 2 * k + corner;
       const Endpoint& ep = m.ends[e];
       const double fn = corner_force(m, e);
-      const double ft = m.sliding_row(e) ? glp_get_row_dual(lp, 2 * static_cast<int>(e) + 2) * m.force_unit : 0.0;
+      const double ft = m.sliding_row(e) ? row_dual(m, 2 * static_cast<int>(e) + 2) * m.force_unit : 0.0;
       n = m.normal(ep);
       const Vec2 p = 0.5 * (m.on_i(ep) + m.on_j(ep));
       N += fn;
@@ -290,7 +332,7 @@ std::vector<double> slacks(const Model& m, double scale) {
   std::vector<double> s(m.ends.size());
   for (size_t e = 0; e < m.ends.size(); ++e) {
     const int row = 2 * static_cast<int>(e) + 1;
-    s[e] = (glp_get_row_prim(m.lp.get(), row) - glp_get_row_lb(m.lp.get(), row)) * scale;
+    s[e] = (row_prim(m, row) - m.row_lb[row - 1]) * scale;
   }
   return s;
 }
@@ -300,6 +342,7 @@ std::vector<double> slacks(const Model& m, double scale) {
 Mechanism collapse_mechanism(Model& m, double scale) {
   glp_prob* lp = m.lp.get();
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_DB, -1, 1);
+  m.kept.rows.clear();  // its vertex ignores the boxes
   Mechanism out;
   if (solve(m) == LpStatus::optimal) {
     const std::vector<double> s = slacks(m, scale);
@@ -308,7 +351,7 @@ Mechanism collapse_mechanism(Model& m, double scale) {
     for (size_t b = 0; b < m.col.size(); ++b) {
       if (m.col[b] < 0) continue;
       double v = 0;
-      for (int k = 0; k < 3; ++k) v = std::max(v, std::abs(glp_get_col_prim(lp, m.col[b] + k)));
+      for (int k = 0; k < 3; ++k) v = std::max(v, std::abs(col_value(m, m.col[b] + k)));
       if (v > 1e-6) out.moving_blocks.push_back(static_cast<int>(b));
     }
   }
@@ -318,19 +361,15 @@ Mechanism collapse_mechanism(Model& m, double scale) {
 
 void lp_check_fields(const Model& m, double scale, StepRecord& rec) {
   // Strong duality: the primal optimum equals sum(dual * bound) over the active rows.
-  glp_prob* lp = m.lp.get();
   double dual = 0;
-  for (int r = 1; r <= glp_get_num_rows(lp); ++r) {
-    const int type = glp_get_row_type(lp, r);
-    if (type == GLP_FR) continue;
-    dual += glp_get_row_dual(lp, r) * glp_get_row_lb(lp, r);
-  }
+  for (size_t i = 0; i < m.row_type.size(); ++i)
+    if (m.row_type[i] != GLP_FR) dual += row_dual(m, static_cast<int>(i) + 1) * m.row_lb[i];
   rec.lp = LpOptima{objective(m) * scale, dual * m.force_unit * scale};
 }
 
 std::vector<double> column_values(const Model& m) {
   std::vector<double> U(m.ncols + 1, 0.0);
-  for (int j = 1; j <= m.ncols; ++j) U[j] = glp_get_col_prim(m.lp.get(), j);
+  for (int j = 1; j <= m.ncols; ++j) U[j] = col_value(m, j);
   return U;
 }
 
@@ -343,7 +382,7 @@ void save_basis(const Model& m, Accepted& a) {
   a.slack.resize(m.ends.size());
   for (size_t e = 0; e < m.ends.size(); ++e) {
     const int row = 2 * static_cast<int>(e) + 1;
-    a.slack[e] = glp_get_row_prim(lp, row) - glp_get_row_lb(lp, row);
+    a.slack[e] = row_prim(m, row) - m.row_lb[row - 1];
   }
 }
 
@@ -352,10 +391,12 @@ void save_basis(const Model& m, Accepted& a) {
 int evaluate_basis(Model& m, const Accepted& a, double h, double h_open) {
   glp_prob* lp = m.lp.get();
   update_lp(m, h, h, h_open);
+  sync_glpk(m);
   for (size_t i = 1; i < a.row_stat.size(); ++i) glp_set_row_stat(lp, static_cast<int>(i), a.row_stat[i]);
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_stat(lp, j, a.col_stat[j]);
   const auto t0 = cpu_now();
   const int rc = prd::glpk_guarded([&] { return glp_warm_up(lp); });
+  keep_basis(m);  // the restored basis, and GLPK's values of it
   m.lp_s += seconds_since(t0);
   ++m.basis_evaluations;
   return rc;
