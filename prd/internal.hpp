@@ -92,6 +92,10 @@ struct Model {
   std::vector<int> dirty_rows;  // those rows
   bool glpk_behind = false;     // bounds and objective not given to GLPK yet
   KeptBasis kept;               // the basis of the last GLPK solve, for the next (kept_basis.hpp)
+  // Whether solve() tries the kept basis: in fixed-step runs. An event-driven run locates its
+  // events on the force state, which a statically indeterminate structure does not fix: the
+  // round-off between KLU's vertex and GLPK's moved a wall's events, so those runs stay GLPK's.
+  bool kept_basis_allowed = false;
   FirstBasis first_basis = FirstBasis::by_size;
   double lp_s = 0;
   long long lp_solves = 0;

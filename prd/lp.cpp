@@ -235,7 +235,7 @@ LpStatus solve(Model& m) {
   // either start, tests/prd/first_basis_test.cpp).
   const bool advanced = m.first_basis == FirstBasis::advanced || (m.first_basis == FirstBasis::by_size && m.ncols >= 3 * kAdvancedBasisBlocks);
   // Most LPs after the first are solved by the basis of the one before (kept_basis.hpp).
-  if (!m.fresh && t_use_kept_basis && solve_by_kept_basis(m)) {
+  if (!m.fresh && m.kept_basis_allowed && t_use_kept_basis && solve_by_kept_basis(m)) {
     m.lp_s += seconds_since(t0);
     ++m.lp_solves;
     ++m.kept_basis_solves;

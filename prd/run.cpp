@@ -105,6 +105,7 @@ struct Walk {
     // A fixed-step run is the event-driven one with every step accepted: the step never
     // changes and no event is bracketed more finely than one step.
     h_ref = s.step;
+    m.kept_basis_allowed = !s.adaptive;
     tol_ev = !s.adaptive ? h_ref : s.event_tolerance > 0 ? s.event_tolerance : 1e-4 * scene_size(c);
     // The longest move. A move's path error (second order, see Path) grows as the square of
     // its length against the scene's, so the default keeps it within the event tolerance:
