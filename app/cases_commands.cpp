@@ -112,9 +112,9 @@ void add_case_commands(CLI::App& app, Commands& out) {
             using T = std::remove_reference_t<decltype(p.get()->*member)>;
             CLI::Option* o = g->add_option(flag, p.get()->*member, f.help);
             if constexpr (std::is_same_v<T, WallBond>)
-              o->transform(CLI::CheckedTransformer(wall_bond_words()))->default_str(wall_bond_name(p.get()->*member));
+              take_words(o, wall_bond_words())->default_str(wall_bond_name(p.get()->*member));
             else if constexpr (std::is_same_v<T, MovingGround>)
-              o->transform(CLI::CheckedTransformer(moving_ground_words()))->default_str(moving_ground_name(p.get()->*member));
+              take_words(o, moving_ground_words())->default_str(moving_ground_name(p.get()->*member));
             else if (f.show_default)
               o->capture_default_str();
           },

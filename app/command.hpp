@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "model/results.hpp"
@@ -34,5 +36,25 @@ void add_sweep_commands(CLI::App& app, Commands& out);     // app/sweep_commands
 void add_tradeoff_commands(CLI::App& app, Commands& out);  // app/tradeoff_commands.cpp: tradeoff
 void add_validate_commands(CLI::App& app, Commands& out);  // app/validate_commands.cpp: validate
 void add_option_commands(CLI::App& app, Commands& out);    // app/options_commands.cpp: options
+
+// A flag that takes one of `words`, each standing for a value of E: anything else is refused in
+// one line naming the flag and the words ("--bond: must be one of header, running, stack, not
+// \"flemish\""), where CLI11's own check prints its internal map.
+template <class E>
+CLI::Option* take_words(CLI::Option* o, const std::map<std::string, E>& words) {
+  std::string list;
+  for (const auto& [w, e] : words) list += (list.empty() ? "" : ", ") + w;
+  // One transform that refuses and converts: CLI11 runs transforms before checks, so a separate
+  // check would see the converted value.
+  o->type_name("WORD");
+  return o->transform(CLI::Validator(
+      [words, list](std::string& v) {
+        const auto it = words.find(v);
+        if (it == words.end()) return "must be one of " + list + ", not \"" + v + "\"";
+        v = std::to_string(static_cast<long long>(it->second));
+        return std::string();
+      },
+      ""));
+}
 
 }  // namespace masonry

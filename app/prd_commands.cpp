@@ -115,11 +115,10 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                                      "the blocks where it left them, d going on from there (dem/README.md, \"Joint stiffness\")");
     sub->add_option("--from-d", *from_d, "With --from: the last equilibrium record at or before this d, m (default: the run's capacity)")
         ->needs(from_opt);
-    sub->add_option("--elastic", *offsets,
-                    "With --from: a closed corner's offset there (a DEM's elastic overlap and shear) is kept as the joint's geometry "
-                    "(keep, the default) or taken back over the first step (take-back)")
-        ->transform(
-            CLI::CheckedTransformer(std::map<std::string, StartOffsets>{{"keep", StartOffsets::keep}, {"take-back", StartOffsets::take_back}}))
+    take_words(sub->add_option("--elastic", *offsets,
+                               "With --from: a closed corner's offset there (a DEM's elastic overlap and shear) is kept as the joint's geometry "
+                               "(keep, the default) or taken back over the first step (take-back)"),
+               std::map<std::string, StartOffsets>{{"keep", StartOffsets::keep}, {"take-back", StartOffsets::take_back}})
         ->needs(from_opt);
     out.push_back({sub, [=]() {
                      const Case c = settings->apply(load_case(*path));

@@ -57,6 +57,17 @@ TEST(CommandLine, AMistypedNameIsRefusedWithTheNearestOne) {
   EXPECT_EQ(run("dem --help", dir).rc, 0);
 }
 
+// A flag that takes a word names the words it takes, not CLI11's internal map of them.
+TEST(CommandLine, AWordOutsideItsListIsRefusedNamingTheWords) {
+  Scratch dir("cli-words");
+  const Ran bond = run("cases wall --bond flemish --out -", dir);
+  EXPECT_EQ(bond.rc, 2);
+  EXPECT_NE(bond.err.find("--bond: must be one of header, running, stack, not \"flemish\""), std::string::npos) << bond.err;
+  const Ran moving = run("cases wall --moving up --out -", dir);
+  EXPECT_NE(moving.err.find("--moving: must be one of left, none, right, not \"up\""), std::string::npos) << moving.err;
+  EXPECT_EQ(run("cases wall --bond stack --moving left --courses 2 --bricks 2 --out -", dir).rc, 0);
+}
+
 TEST(CommandLine, QuietSaysNothingButWhyItFailed) {
   Scratch dir("cli-quiet");
   const std::string out = (dir.path / "o").string();
