@@ -46,7 +46,7 @@ double dual_eps(double cost) { return 1e-7 + 1e-10 * std::abs(cost); }
 constexpr double kLeastRcond = 1e-12;
 
 // A_N in compressed columns from the rows as update_lp holds them.
-bool build_matrix(const Model& m, KeptBasisValues& v, const std::vector<int>& rows) {
+void build_matrix(const Model& m, KeptBasisValues& v, const std::vector<int>& rows) {
   const int n = static_cast<int>(rows.size());
   v.ap.assign(n + 1, 0);
   for (int row : rows) {
@@ -70,7 +70,6 @@ bool build_matrix(const Model& m, KeptBasisValues& v, const std::vector<int>& ro
     // zero (GLPK's status NF).
     v.rhs[r] = m.row_type[row - 1] == GLP_FR ? 0.0 : m.row_lb[row - 1];
   }
-  return true;
 }
 
 // KLU's factors of A_N: a refactorisation in the last pivot order where the pattern is the last
@@ -133,7 +132,8 @@ bool solve_by_kept_basis(Model& m) {
   KeptBasisValues& v = *k.v;
   const int n = static_cast<int>(k.rows.size());
   const int nr = static_cast<int>(m.row_type.size());
-  if (!build_matrix(m, v, k.rows) || !factorise(v, n)) return false;
+  build_matrix(m, v, k.rows);
+  if (!factorise(v, n)) return false;
   v.xb = v.rhs;
   if (!klu_solve(v.symbolic, v.numeric, n, 1, v.xb.data(), &v.common)) return false;
   v.x.assign(m.ncols + 1, 0.0);
