@@ -35,14 +35,16 @@ struct KeptBasisValues {
 
 namespace {
 
-// GLPK's primal simplex's own tests of a basis (glp_smcp's tol_bnd and tol_dj, 1e-7, plus a
-// thousandth of that times the bound or cost; the LP's units are a step and the force unit, so
-// its values are of order one): a basis taken here is one GLPK's simplex stops at without a
-// pivot, up to the round-off between its factorisation and this one.
-double primal_eps(double bound) { return 1e-7 + 1e-10 * std::abs(bound); }
+// GLPK's primal simplex's own tests of a basis, or tighter: a basis taken here is one GLPK's
+// simplex stops at without a pivot, up to the round-off between its factorisation and this one.
+// GLPK shifts every bound to zero before its tests, so its primal test is absolute: it starts a
+// phase 1 where a basic variable is below its bound by more than 0.97 tol_bnd (tol_bnd 1e-7);
+// this one takes half of that. Its dual test is tol_dj (1e-7) plus 1e-10 times the cost. The
+// LP's units are a step and the force unit, so its values are of order one.
+constexpr double kPrimalEps = 0.5e-7;
 double dual_eps(double cost) { return 1e-7 + 1e-10 * std::abs(cost); }
-// Below this reciprocal pivot growth KLU's refactorisation (the last pivot order) is not trusted
-// and the matrix is factorised again with partial pivoting.
+// Factors whose ratio of smallest to largest diagonal entry of U (klu_rcond) is below this are
+// not used: GLPK refuses a basis whose condition estimate passes 1 / DBL_EPSILON.
 constexpr double kLeastRcond = 1e-12;
 
 // A_N in compressed columns from the rows as update_lp holds them.
@@ -93,7 +95,7 @@ bool factorise(KeptBasisValues& v, int n) {
     v.pattern.insert(v.pattern.end(), v.ai.begin(), v.ai.end());
   }
   v.numeric = klu_factor(v.ap.data(), v.ai.data(), v.ax.data(), v.symbolic, &v.common);
-  if (v.numeric && v.common.status == KLU_OK) return true;
+  if (v.numeric && v.common.status == KLU_OK && klu_rcond(v.symbolic, v.numeric, &v.common) && v.common.rcond > kLeastRcond) return true;
   v.factorised.clear();
   return false;
 }
@@ -138,7 +140,10 @@ bool solve_by_kept_basis(Model& m) {
   if (!klu_solve(v.symbolic, v.numeric, n, 1, v.xb.data(), &v.common)) return false;
   v.x.assign(m.ncols + 1, 0.0);
   for (int j = 1; j <= m.ncols; ++j)
-    if (v.basic_of[j] >= 0) v.x[j] = v.xb[v.basic_of[j]];
+    if (v.basic_of[j] >= 0) {
+      v.x[j] = v.xb[v.basic_of[j]];
+      if (!std::isfinite(v.x[j])) return false;
+    }
   // Primal feasibility: every basic row within its bounds.
   v.nonbasic.assign(nr, 0);
   for (int row : k.rows) v.nonbasic[row - 1] = 1;
@@ -148,11 +153,12 @@ bool solve_by_kept_basis(Model& m) {
     const int* cols = &m.row_cols[6 * i];
     double s = 0;
     for (int q = 0; q < static_cast<int>(held[0]); ++q) s += held[q + 1] * v.x[cols[q]];
-    v.row[i] = s;
+    // A nonbasic row's activity is its bound (or zero, free), exactly, as GLPK gives it.
+    v.row[i] = !v.nonbasic[i] ? s : m.row_type[i] == GLP_FR ? 0.0 : m.row_lb[i];
     if (v.nonbasic[i] || m.row_type[i] == GLP_FR) continue;
-    const double lb = m.row_lb[i], eps = primal_eps(lb);
-    if (!std::isfinite(s) || s < lb - eps) return false;
-    if (m.row_type[i] == GLP_FX && s > lb + eps) return false;
+    const double lb = m.row_lb[i];
+    if (!std::isfinite(s) || s < lb - kPrimalEps) return false;
+    if (m.row_type[i] == GLP_FX && s > lb + kPrimalEps) return false;
   }
   // Dual feasibility: A_N^T y = c_B; y >= 0 on the rows held at a lower bound (a fixed row's
   // dual is free, a free row's zero); a nonbasic free column's reduced cost c_j - y.A_j zero.

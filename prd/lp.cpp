@@ -391,10 +391,10 @@ void save_basis(const Model& m, Accepted& a) {
 int evaluate_basis(Model& m, const Accepted& a, double h, double h_open) {
   glp_prob* lp = m.lp.get();
   update_lp(m, h, h, h_open);
+  const auto t0 = cpu_now();
   sync_glpk(m);
   for (size_t i = 1; i < a.row_stat.size(); ++i) glp_set_row_stat(lp, static_cast<int>(i), a.row_stat[i]);
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_stat(lp, j, a.col_stat[j]);
-  const auto t0 = cpu_now();
   const int rc = prd::glpk_guarded([&] { return glp_warm_up(lp); });
   keep_basis(m);  // the restored basis, and GLPK's values of it
   m.lp_s += seconds_since(t0);

@@ -17,10 +17,12 @@ namespace {
 RunResult run(const Case& c, bool adaptive, bool kept) {
   PrdSettings s = PrdSettings::from_case(c);
   s.adaptive = adaptive;
+  // Restored whatever the run does, so that no later test on this thread runs without it.
+  struct Restore {
+    ~Restore() { prd_detail::t_use_kept_basis = true; }
+  } restore;
   prd_detail::t_use_kept_basis = kept;
-  RunResult r = prd_run(c, s);
-  prd_detail::t_use_kept_basis = true;
-  return r;
+  return prd_run(c, s);
 }
 
 void expect_same_run(const Case& c, const std::string& what) {
