@@ -111,10 +111,8 @@ void add_case_commands(CLI::App& app, Commands& out) {
           [&](auto member) {
             using T = std::remove_reference_t<decltype(p.get()->*member)>;
             CLI::Option* o = g->add_option(flag, p.get()->*member, f.help);
-            if constexpr (std::is_same_v<T, WallBond>)
-              take_words(o, wall_bond_words())->default_str(wall_bond_name(p.get()->*member));
-            else if constexpr (std::is_same_v<T, MovingGround>)
-              take_words(o, moving_ground_words())->default_str(moving_ground_name(p.get()->*member));
+            if constexpr (std::is_enum_v<T>)
+              take_words(o, wall_words<T>())->default_str(wall_word(p.get()->*member));
             else if (f.show_default)
               o->capture_default_str();
           },

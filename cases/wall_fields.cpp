@@ -47,25 +47,16 @@ const char* const kWallOpeningHelp =
 
 std::span<const WallField> wall_fields() { return kFields; }
 
-std::map<std::string, WallBond> wall_bond_words() {
+template <>
+std::map<std::string, WallBond> wall_words() {
   std::map<std::string, WallBond> out;
   for (WallBond b : {WallBond::running, WallBond::stack, WallBond::header}) out[wall_bond_name(b)] = b;
   return out;
 }
 
-const char* moving_ground_name(MovingGround m) {
-  switch (m) {
-    case MovingGround::none: return "none";
-    case MovingGround::left: return "left";
-    case MovingGround::right: return "right";
-  }
-  return "?";
-}
-
-std::map<std::string, MovingGround> moving_ground_words() {
-  std::map<std::string, MovingGround> out;
-  for (MovingGround m : {MovingGround::none, MovingGround::left, MovingGround::right}) out[moving_ground_name(m)] = m;
-  return out;
+template <>
+std::map<std::string, MovingGround> wall_words() {
+  return {{"none", MovingGround::none}, {"left", MovingGround::left}, {"right", MovingGround::right}};
 }
 
 BrickWall wall_parameters(const nlohmann::json& values, const std::string& where) {
@@ -94,10 +85,8 @@ BrickWall wall_parameters(const nlohmann::json& values, const std::string& where
           } else if constexpr (std::is_same_v<T, double>) {
             if (!v.is_number() || !std::isfinite(v.get<double>())) throw CaseError(where + ": parameter '" + name + "' must be a number");
             p.*member = v.get<double>();
-          } else if constexpr (std::is_same_v<T, WallBond>) {
-            p.*member = word_value(wall_bond_words(), where, name, v);
           } else {
-            p.*member = word_value(moving_ground_words(), where, name, v);
+            p.*member = word_value(wall_words<T>(), where, name, v);
           }
         },
         f->member);

@@ -26,10 +26,21 @@ std::span<const WallField> wall_fields();
 inline constexpr const char* kWallOpeningName = "opening";
 extern const char* const kWallOpeningHelp;
 
-// The words of the word fields, as the command line and Python take them.
-std::map<std::string, WallBond> wall_bond_words();
-std::map<std::string, MovingGround> moving_ground_words();
-const char* moving_ground_name(MovingGround m);
+// The words of a word field (WallBond, MovingGround), as the command line and Python take them,
+// each with the value it stands for.
+template <class E>
+std::map<std::string, E> wall_words();
+template <>
+std::map<std::string, WallBond> wall_words();
+template <>
+std::map<std::string, MovingGround> wall_words();
+// The word of a value (the default's, in the help).
+template <class E>
+std::string wall_word(E value) {
+  for (const auto& [w, e] : wall_words<E>())
+    if (e == value) return w;
+  return "?";
+}
 
 // BrickWall from an object NAME -> value (a number, a word, or for "opening" one text or a list
 // of them); the names it does not give keep their defaults. Throws CaseError "WHERE: parameter

@@ -89,7 +89,6 @@ struct Model {
   std::vector<double> obj_coef;  // per column (1-based): the objective's coefficient
   // update_lp writes the LP here; sync_glpk gives GLPK what changed when GLPK is asked.
   std::vector<char> row_dirty;  // per LP row: coefficients GLPK does not hold yet
-  std::vector<int> dirty_rows;  // those rows
   bool glpk_behind = false;     // bounds and objective not given to GLPK yet
   KeptBasis kept;               // the basis of the last GLPK solve, for the next (kept_basis.hpp)
   // Whether solve() tries the kept basis: in fixed-step runs. An event-driven run locates its

@@ -143,7 +143,7 @@ void update_lp(Model& m, double h, double scale, double h_open) {
       if (!same) {
         held[0] = cnt;
         for (int k = 1; k <= cnt; ++k) held[k] = val[k], m.row_cols[6 * (row - 1) + k - 1] = ind[k];
-        if (!m.row_dirty[row - 1]) m.row_dirty[row - 1] = 1, m.dirty_rows.push_back(row);
+        m.row_dirty[row - 1] = 1;
       }
       if (r == 0) {
         double gap = (pj - pi).dot(n);
@@ -172,17 +172,17 @@ void sync_glpk(Model& m) {
   for (int j = 1; j <= m.ncols; ++j) glp_set_obj_coef(lp, j, m.obj_coef[j]);
   int ind[7];
   double val[7];
-  for (int row : m.dirty_rows) {
-    const double* held = &m.row_coef[7 * (row - 1)];
-    const int cnt = static_cast<int>(held[0]);
-    for (int k = 1; k <= cnt; ++k) ind[k] = m.row_cols[6 * (row - 1) + k - 1], val[k] = held[k];
-    glp_set_mat_row(lp, row, cnt, ind, val);
-    m.row_dirty[row - 1] = 0;
-  }
-  m.dirty_rows.clear();
   for (size_t i = 0; i < m.row_type.size(); ++i) {
+    const int row = static_cast<int>(i) + 1;
+    if (m.row_dirty[i]) {
+      const double* held = &m.row_coef[7 * i];
+      const int cnt = static_cast<int>(held[0]);
+      for (int k = 1; k <= cnt; ++k) ind[k] = m.row_cols[6 * i + k - 1], val[k] = held[k];
+      glp_set_mat_row(lp, row, cnt, ind, val);
+      m.row_dirty[i] = 0;
+    }
     const double lb = m.row_lb[i];
-    glp_set_row_bnds(lp, static_cast<int>(i) + 1, m.row_type[i], lb, m.row_type[i] == GLP_FX ? lb : 0);
+    glp_set_row_bnds(lp, row, m.row_type[i], lb, m.row_type[i] == GLP_FX ? lb : 0);
   }
   m.glpk_behind = false;
 }

@@ -61,7 +61,7 @@ std::string svg_tornado(const SweepPlan& p, const MethodSensitivity& m) {
     << xml_escape(p.sample ? "the other options at the base point (vertical line: its capacity); bar ends labelled with x"
                            : "the other options at their middle values (vertical line: the capacity there); bar ends labelled with x")
     << "</text>\n"
-    << svg_axes(plot, linear_ticks(0, xmax, 8, 4), Ticks{}, "capacity: last stable d (" + p.d_unit + ")", "");
+    << svg_axes(plot, linear_ticks(0, xmax, 8, 4), Ticks{}, "capacity: last stable d (" + path_unit(p.base) + ")", "");
   for (size_t i = 0; i < bars.size(); ++i) {
     const Bar& b = bars[i];
     const double y = top + row * double(i) + 6, h = row - 12;
@@ -69,8 +69,8 @@ std::string svg_tornado(const SweepPlan& p, const MethodSensitivity& m) {
     o << "<text x=\"" << px(left - 8) << "\" y=\"" << px(y + h / 2 + 4) << "\" font-size=\"12\" text-anchor=\"end\">" << xml_escape(b.ps->key)
       << "</text>\n"
       << "<rect x=\"" << px(x0) << "\" y=\"" << px(y) << "\" width=\"" << px(x1 - x0) << "\" height=\"" << px(h) << "\" fill=\"" << series_color(0)
-      << "\" fill-opacity=\"0.75\"><title>" << xml_escape(b.ps->key) << ": " << fmt::g(b.lo, 4) << " " << p.d_unit << " at " << v4(b.x_lo) << ", "
-      << fmt::g(b.hi, 4) << " " << p.d_unit << " at " << v4(b.x_hi)
+      << "\" fill-opacity=\"0.75\"><title>" << xml_escape(b.ps->key) << ": " << fmt::g(b.lo, 4) << " " << path_unit(p.base) << " at " << v4(b.x_lo)
+      << ", " << fmt::g(b.hi, 4) << " " << path_unit(p.base) << " at " << v4(b.x_hi)
       << "</title></rect>\n"
       // The low end's x outside the bar, or inside it where the bar starts at the axis.
       << (x0 - left > 40 ? "<text x=\"" + px(x0 - 3) + "\" y=\"" + px(y + h / 2 + 4) + "\" font-size=\"10\" text-anchor=\"end\" fill=\"#333\">"
@@ -78,7 +78,7 @@ std::string svg_tornado(const SweepPlan& p, const MethodSensitivity& m) {
       << v4(b.x_lo) << "</text>\n"
       << "<text x=\"" << px(x1 + 3) << "\" y=\"" << px(y + h / 2 + 4) << "\" font-size=\"10\" fill=\"#333\">" << v4(b.x_hi) << "</text>\n";
   }
-  if (base) o << vline(plot, *base, "#000", "4,3", "base point: " + fmt::g(*base, 4) + " " + p.d_unit);
+  if (base) o << vline(plot, *base, "#000", "4,3", "base point: " + fmt::g(*base, 4) + " " + path_unit(p.base));
   o << "</svg>\n";
   return o.str();
 }
@@ -101,20 +101,21 @@ std::string svg_histogram(const SweepPlan& p, const SweepTable& t, const MethodS
   const Plot plot{left, top, W - left - right, ph, lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo), 0, ymax};
   std::ostringstream o;
   o << svg_open(W, H) << title(left, 22, std::string(method_label(m.method)) + ": the " + std::to_string(caps.size()) + " sampled capacities")
-    << svg_axes(plot, linear_ticks(plot.x0, plot.x1, 8, 4), linear_ticks(0, ymax, 6, 4), "capacity: last stable d (" + p.d_unit + ")", "samples");
+    << svg_axes(plot, linear_ticks(plot.x0, plot.x1, 8, 4), linear_ticks(0, ymax, 6, 4), "capacity: last stable d (" + path_unit(p.base) + ")",
+                "samples");
   for (int b = 0; b < nb; ++b) {
     if (!count[b]) continue;
     const double x0 = plot.X(lo + b * w), x1 = plot.X(lo + (b + 1) * w);
     o << "<rect x=\"" << px(x0) << "\" y=\"" << px(plot.Y(count[b])) << "\" width=\"" << px(std::max(1.0, x1 - x0 - 1)) << "\" height=\""
       << px(plot.Y(0) - plot.Y(count[b])) << "\" fill=\"" << series_color(0) << "\" fill-opacity=\"0.8\"><title>" << fmt::g(lo + b * w, 4) << " to "
-      << fmt::g(lo + (b + 1) * w, 4) << " " << p.d_unit << ": " << count[b] << "</title></rect>\n";
+      << fmt::g(lo + (b + 1) * w, 4) << " " << path_unit(p.base) << ": " << count[b] << "</title></rect>\n";
   }
   for (size_t i = 0; i < m.percentiles.size(); ++i) {
     const auto& [q, v] = m.percentiles[i];
     // Labels one line apart: percentiles may lie close together.
-    o << vline(plot, v, "#000", q == 50 ? "" : "5,3", std::to_string(q) + "th percentile: " + fmt::g(v, 4) + " " + p.d_unit) << "<text x=\""
-      << px(plot.X(v) + 3) << "\" y=\"" << px(top + 12 + 14 * double(i)) << "\" font-size=\"11\">" << q << "th: " << fmt::g(v, 3) << " " << p.d_unit
-      << "</text>\n";
+    o << vline(plot, v, "#000", q == 50 ? "" : "5,3", std::to_string(q) + "th percentile: " + fmt::g(v, 4) + " " + path_unit(p.base)) << "<text x=\""
+      << px(plot.X(v) + 3) << "\" y=\"" << px(top + 12 + 14 * double(i)) << "\" font-size=\"11\">" << q << "th: " << fmt::g(v, 3) << " "
+      << path_unit(p.base) << "</text>\n";
   }
   o << "</svg>\n";
   return o.str();
@@ -130,7 +131,8 @@ std::string svg_prd_dem(const SweepPlan& p, const SweepSensitivity& s) {
   const Plot plot{left, top, side, side, 0, vmax, 0, vmax};
   std::ostringstream o;
   o << svg_open(W, H) << title(left, 22, "DEM against PRD, point by point")
-    << svg_axes(plot, linear_ticks(0, vmax, 6, 4), linear_ticks(0, vmax, 6, 4), "PRD capacity (" + p.d_unit + ")", "DEM capacity (" + p.d_unit + ")");
+    << svg_axes(plot, linear_ticks(0, vmax, 6, 4), linear_ticks(0, vmax, 6, 4), "PRD capacity (" + path_unit(p.base) + ")",
+                "DEM capacity (" + path_unit(p.base) + ")");
   const auto diag = [&](double f, const char* dash, const std::string& tip) {
     o << "<line x1=\"" << px(plot.X(0)) << "\" y1=\"" << px(plot.Y(0)) << "\" x2=\"" << px(plot.X(vmax / std::max(f, 1.0))) << "\" y2=\""
       << px(plot.Y(vmax * std::min(f, 1.0))) << "\" stroke=\"#666\" stroke-width=\"1.2\""
@@ -143,7 +145,7 @@ std::string svg_prd_dem(const SweepPlan& p, const SweepSensitivity& s) {
   for (const PrdDemPair& x : s.pairs) {
     const std::string label = x.sample >= 0 ? "sample " + std::to_string(x.sample) : "run " + std::to_string(x.dem);
     o << "<circle cx=\"" << px(plot.X(x.prd_capacity)) << "\" cy=\"" << px(plot.Y(x.dem_capacity)) << "\" r=\"4\"><title>" << xml_escape(label)
-      << ": PRD " << fmt::g(x.prd_capacity, 4) << " " << p.d_unit << ", DEM " << fmt::g(x.dem_capacity, 4) << " " << p.d_unit
+      << ": PRD " << fmt::g(x.prd_capacity, 4) << " " << path_unit(p.base) << ", DEM " << fmt::g(x.dem_capacity, 4) << " " << path_unit(p.base)
       << "</title></circle>\n";
     if (s.pairs.size() <= 12)
       o << "<text x=\"" << px(plot.X(x.prd_capacity) + 6) << "\" y=\"" << px(plot.Y(x.dem_capacity) - 6) << "\" font-size=\"10\" fill=\"#333\">"

@@ -88,12 +88,12 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
   for (const SweepRun& r : p.runs) prd += r.method == Method::prd;
   c.lead = "Case " + p.base.name + " (sweep file " + p.source + ", plan " + p.hash + "): " + std::to_string(p.runs.size()) + " runs (" +
            std::to_string(prd) + " PRD, " + std::to_string(p.runs.size() - prd) + " DEM), " + std::to_string(s.finished) + " finished, " +
-           std::to_string(s.errors) + " without a located capacity (failed, or a DEM hold undecided). Capacity: the last stable d (" + p.d_unit +
-           "); difference: (DEM - PRD) / PRD; tolerance " + fmt::g(p.tolerance * 100) + "%.";
+           std::to_string(s.errors) + " without a located capacity (failed, or a DEM hold undecided). Capacity: the last stable d (" +
+           path_unit(p.base) + "); difference: (DEM - PRD) / PRD; tolerance " + fmt::g(p.tolerance * 100) + "%.";
   c.has_figure = !s.x.empty() && !s.curves.empty();
   const bool dem = any_dem(p);
   if (friction_x(s) && dem) {
-    c.boundaries.head = {"curve", "PRD capacity (" + p.d_unit + ")", "PRD: sliding below (deg)",
+    c.boundaries.head = {"curve", "PRD capacity (" + path_unit(p.base) + ")", "PRD: sliding below (deg)",
                          "DEM and PRD differ by more than " + fmt::g(p.tolerance * 100) + "% up to (deg)"};
     for (const SweepCurve& cv : s.curves) {
       const SweepRow* pr = curve_prd(p, t, cv);
@@ -112,7 +112,7 @@ Content content(const SweepPlan& p, const SweepTable& t, const SweepSummary& s) 
   c.runs.head = {"run", "method"};
   if (p.sample) c.runs.head.push_back("sample");
   for (const std::string& k : p.keys) c.runs.head.push_back(k);
-  c.runs.head.push_back("capacity (" + p.d_unit + ")");
+  c.runs.head.push_back("capacity (" + path_unit(p.base) + ")");
   for (const char* h : {"stopped", "difference from PRD", "PRD: sliding below (deg)", "time (s)", "message"}) c.runs.head.push_back(h);
   for (const SweepRun& run : p.runs) {
     std::vector<std::string> r = {std::to_string(run.index), method_name(run.method)};
@@ -221,7 +221,7 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
   std::ostringstream o;
   o << svg_open(W, H) << "<text x=\"" << px(left) << "\" y=\"22\" font-size=\"15\" font-weight=\"bold\">Capacity against the "
     << xml_escape(x_title(s)) << "</text>\n"
-    << svg_axes(plot, linear_ticks(xlo, xhi, 8, 6), linear_ticks(0, ymax, 6, 4), x_title(s), "capacity: last stable d (" + p.d_unit + ")");
+    << svg_axes(plot, linear_ticks(xlo, xhi, 8, 6), linear_ticks(0, ymax, 6, 4), x_title(s), "capacity: last stable d (" + path_unit(p.base) + ")");
   for (size_t ci = 0; ci < s.curves.size(); ++ci) {
     const SweepCurve& c = s.curves[ci];
     const char* col = series_color(ci);
@@ -252,7 +252,7 @@ std::string svg_sweep(const SweepPlan& p, const SweepTable& t, const SweepSummar
     o << "<polyline fill=\"none\" stroke=\"" << col << "\" stroke-width=\"2\" points=\"" << pts << "\"/>\n<g fill=\"" << col << "\">\n";
     for (int i : c.runs)
       o << "<circle cx=\"" << px(X(x_of(p, s, i))) << "\" cy=\"" << px(Y(t[i]->capacity)) << "\" r=\"3.5\"><title>run " << i << ": "
-        << xml_escape(run_label(p, p.runs[i])) << ": " << fmt::g(t[i]->capacity, 6) << " " << p.d_unit << ", " << status_name(t[i]->status)
+        << xml_escape(run_label(p, p.runs[i])) << ": " << fmt::g(t[i]->capacity, 6) << " " << path_unit(p.base) << ", " << status_name(t[i]->status)
         << "</title></circle>\n";
     o << "</g>\n";
   }
@@ -338,7 +338,7 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
     d.heading(3, {M});
     if (sens.sampled) {
       Table pc;
-      const std::string u = " (" + p.d_unit + ")";
+      const std::string u = " (" + path_unit(p.base) + ")";
       pc.head = {"samples", "located", "capacity 0", "5th percentile" + u, "median" + u, "95th percentile" + u, "least" + u, "largest" + u};
       std::vector<Cell> row = {std::to_string(m.counted), std::to_string(m.located), std::to_string(m.zero)};
       for (size_t q = 0; q < 3; ++q) row.push_back(q < m.percentiles.size() ? fmt::g(m.percentiles[q].second, 4) : "-");
@@ -349,14 +349,19 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
       std::string near;
       for (size_t q = 0; q < m.nearest.size(); ++q)
         near += (near.empty() ? "" : "; ") + std::to_string(m.percentiles[q].first) + "th: sample " + std::to_string(m.nearest[q].sample) + " (" +
-                fmt::g(m.nearest[q].capacity, 4) + " " + p.d_unit + ")";
+                fmt::g(m.nearest[q].capacity, 4) + " " + path_unit(p.base) + ")";
       if (!near.empty())
         d.paragraph({"Percentiles: linear interpolation between the sorted capacities (numpy's default). The samples nearest them: " + near + "."});
     }
     Table el;
-    el.head = {
-        "option",         "elasticity",   "standard error", "runs", sens.sampled ? "Spearman" : "", "one at a time: capacity (" + p.d_unit + ")",
-        "along the line", "capacity 0 at"};
+    el.head = {"option",
+               "elasticity",
+               "standard error",
+               "runs",
+               sens.sampled ? "Spearman" : "",
+               "one at a time: capacity (" + path_unit(p.base) + ")",
+               "along the line",
+               "capacity 0 at"};
     if (!sens.sampled) el.head.erase(el.head.begin() + 4);
     std::string how;
     for (const ParameterSensitivity& ps : m.parameters) {
@@ -405,15 +410,16 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
       // Hinge sets that group nothing (each its own, as on the cathedral, whose courses and
       // voussoirs renumber with the geometry) are left to sweep.csv's `hinges` column.
       if (2 * m.mechanisms.size() <= size_t(m.located) || m.mechanisms.size() <= 12)
-        d.table(mechanism_table(m.mechanisms, "hinges at collapse", p.d_unit, sens.sampled, m.located));
+        d.table(mechanism_table(m.mechanisms, "hinges at collapse", path_unit(p.base), sens.sampled, m.located));
       else
         d.paragraph({std::to_string(m.mechanisms.size()) + " different sets of hinges over " + std::to_string(m.located) + " rows (each row's in ",
                      Cell("sweep.csv", CellStyle::code), "'s column ", Cell("hinges", CellStyle::code), "): grouped by members only."});
-      if (m.members.size() < m.mechanisms.size()) d.table(mechanism_table(m.members, "members with hinges", p.d_unit, sens.sampled, m.located));
+      if (m.members.size() < m.mechanisms.size())
+        d.table(mechanism_table(m.members, "members with hinges", path_unit(p.base), sens.sampled, m.located));
       if (m.members.size() > 1) {
         d.paragraph({"Each member (or pair of members joined by a hinge) alone: the share of the " + std::string(sens.sampled ? "samples" : "runs") +
                      " whose hinges at collapse include it, and their median capacity."});
-        d.table(mechanism_table(m.member_frequency, "member with a hinge", p.d_unit, sens.sampled, m.located, m.member_frequency.size()));
+        d.table(mechanism_table(m.member_frequency, "member with a hinge", path_unit(p.base), sens.sampled, m.located, m.member_frequency.size()));
       }
     }
   }
@@ -421,7 +427,7 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
     d.heading(3, {"PRD against DEM"});
     d.figure("figures/prd-dem.svg", "DEM against PRD per point", svg);
     Table pd;
-    pd.head = {"sample", "run (DEM)", "PRD (" + p.d_unit + ")", "DEM (" + p.d_unit + ")", "difference"};
+    pd.head = {"sample", "run (DEM)", "PRD (" + path_unit(p.base) + ")", "DEM (" + path_unit(p.base) + ")", "difference"};
     for (const PrdDemPair& x : sens.pairs)
       pd.rows.push_back({x.sample >= 0 ? std::to_string(x.sample) : "-", std::to_string(x.dem), fmt::g(x.prd_capacity, 4), fmt::g(x.dem_capacity, 4),
                          x.prd_capacity > 0 ? pct((x.dem_capacity - x.prd_capacity) / x.prd_capacity) : "-"});

@@ -113,7 +113,7 @@ void Recorder::operator()(const SweepRow& r) {
   if (r.status == RunStatus::error)
     std::snprintf(b, sizeof b, "error after %.3g s", r.time_s);
   else
-    std::snprintf(b, sizeof b, "%s, capacity %.6g %s in %.3g s", status_name(r.status), r.capacity, pr_.plan.d_unit.c_str(), r.time_s);
+    std::snprintf(b, sizeof b, "%s, capacity %.6g %s in %.3g s", status_name(r.status), r.capacity, path_unit(pr_.plan.base).c_str(), r.time_s);
   std::cerr << progress_.line(done_, "run " + std::to_string(r.index) + " " + method_name(r.method) + " (" + label + "): " + b +
                                          (r.status == RunStatus::error ? ": " + r.message : std::string()))
             << "\n"

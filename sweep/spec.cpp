@@ -435,7 +435,6 @@ SweepPlan plan_sweep(const SweepSpec& spec, const Case& c) {
     p.options.emplace_back(key, value);
     if (key == option_key(&PrdOptions::sliding_check)) p.sliding_check = p.base.prd.sliding_check;
   }
-  p.d_unit = path_unit(p.base);
   const std::string base_text = case_to_json(p.base);
   // Whether the case takes a value of a key: a generator builds its case, a case option loads.
   const auto probe = [&](const std::string& key, const json& value) {

@@ -122,7 +122,6 @@ struct SweepPlan {
   std::vector<SweepRun> runs;  // PRD runs first, then DEM; each in factorial order
   std::string hash;            // 16 hex digits over the base case and the runs
   double tolerance = 0.05;
-  std::string d_unit = "m";  // the base case's path unit (path_unit): "m", or "rad" where every moving support only turns
 };
 
 // The full factorial over spec.vary (last key fastest), or the sampled design (the base point,
