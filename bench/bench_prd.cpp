@@ -20,6 +20,8 @@ namespace {
 masonry::Case standard(const std::string& name) { return masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json"); }
 
 void count_run(benchmark::State& state, const masonry::RunResult& r, double first_lp_s) {
+  // A run that ended in an error is no timing of the run asked for.
+  if (r.status == masonry::RunStatus::error) state.SkipWithError(r.message.c_str());
   state.counters["capacity_m"] = r.capacity;
   state.counters["lp_solves"] = static_cast<double>(r.timing.lp_solves);
   state.counters["kept_basis_solves"] = static_cast<double>(r.timing.kept_basis_solves);

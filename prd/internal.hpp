@@ -209,6 +209,18 @@ std::vector<double> generalised_loads(const Model& m);  // N (and N m / L_b)
 void update_lp(Model& m, double h, double scale, double h_open = 0);
 void sync_glpk(Model& m);
 LpStatus solve(Model& m);
+// GLPK's exact (rational) simplex, solve()'s last resort, only up to this many rows: its time
+// grows as the rows to the power 2.2 (the first LP of generated walls from the advanced basis:
+// 1,140 rows 0.5 s, 2,612 rows 2.8 s, 5,676 rows 15.7 s), so that 10,000 rows take about a
+// minute and a 6,442-block wall's 76,320 rows ran for hours.
+constexpr int kExactRows = 10000;
+// How far a row may fail a collapse mechanism's conditions, relative to its largest increment
+// (is_mechanism): round-off on O(1) coefficients is far below it, a lost row far above.
+constexpr double kRayTolerance = 1e-7;
+bool is_mechanism(const Model& m, const std::vector<double>& du);  // du per column, 1-based
+// The direction GLPK's primal simplex found the last LP unbounded along (per column, 1-based;
+// empty where GLPK names none: the exact simplex, or an LP it did not find unbounded).
+std::vector<double> unbounded_ray(const Model& m);
 double objective(const Model& m);               // of the last solve: N times the columns' unit (x the LP's scale: J)
 double col_value(const Model& m, int j);        // column j's primal value (1-based)
 double corner_force(const Model& m, size_t e);  // dual of corner e's no-penetration row, N

@@ -12,7 +12,10 @@
 // duals are then the endpoint forces in N: f_n >= 0 on the first, f_t on the second.
 #include <glpk.h>
 
+#include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "prd/internal.hpp"
 #include "prd/kept_basis.hpp"
@@ -206,10 +209,56 @@ void quiet_adv_basis(glp_prob* lp) {
   glp_term_out(was);
 }
 
+// Whether direction du (per column, 1-based; the columns' units) is a collapse mechanism of the
+// LP update_lp wrote: no corner penetrates and no closed joint slides along it (every
+// no-penetration row's rate at least 0, every no-sliding row's 0, within kRayTolerance of the
+// largest increment: the coefficients are O(1)), and the loads do work on it (the objective
+// falls). Computed from the model's rows, not from GLPK's factorisation, so that it checks what
+// the simplex claimed.
+bool is_mechanism(const Model& m, const std::vector<double>& du) {
+  if (du.size() != static_cast<size_t>(m.ncols) + 1) return false;
+  double size = 0, work = 0;
+  for (int j = 1; j <= m.ncols; ++j) size = std::max(size, std::abs(du[j])), work += m.obj_coef[j] * du[j];
+  if (!(size > 0) || !std::isfinite(size) || !(work < 0)) return false;
+  for (size_t i = 0; i < m.row_type.size(); ++i) {
+    if (m.row_type[i] == GLP_FR) continue;
+    const double* held = &m.row_coef[7 * i];
+    double rate = 0;
+    for (int k = 1; k <= static_cast<int>(held[0]); ++k) rate += held[k] * du[m.row_cols[6 * i + k - 1]];
+    if (rate < -kRayTolerance * size) return false;
+    if (m.row_type[i] == GLP_FX && rate > kRayTolerance * size) return false;
+  }
+  return true;
+}
+
+// GLPK's certificate of an unbounded LP as a direction of the columns: the nonbasic variable
+// whose move improves the objective without bound (glp_get_unbnd_ray) moves by one unit the
+// way its reduced cost improves, and the basic columns with it (its column of the simplex
+// table). Empty where GLPK names no such variable.
+std::vector<double> unbounded_ray(const Model& m) {
+  glp_prob* lp = m.lp.get();
+  const int rows = glp_get_num_rows(lp), k = glp_get_unbnd_ray(lp);
+  if (k <= 0 || !glp_bf_exists(lp)) return {};
+  if ((k <= rows ? glp_get_row_stat(lp, k) : glp_get_col_stat(lp, k - rows)) == GLP_BS) return {};
+  const double d = k <= rows ? glp_get_row_dual(lp, k) : glp_get_col_dual(lp, k - rows);
+  const double way = d < 0 ? 1.0 : -1.0;  // minimisation: a negative reduced cost improves upwards
+  std::vector<double> du(m.ncols + 1, 0.0);
+  if (k > rows) du[k - rows] = way;
+  std::vector<int> ind(rows + 1);
+  std::vector<double> val(rows + 1);
+  const int len = prd::glpk_guarded([&] { return glp_eval_tab_col(lp, k, ind.data(), val.data()); });
+  for (int t = 1; t <= len; ++t)
+    if (ind[t] > rows) du[ind[t] - rows] = way * val[t];
+  return du;
+}
+
 // Runs the primal simplex from the previous step's basis (the warm start that makes a run
 // fast). Degenerate LPs can stall; an iteration limit catches that, and the solve is repeated
-// from a fresh basis with the textbook ratio test, then, as a last resort, in exact rational
-// arithmetic, so a run never hangs and never reports a status GLPK did not prove.
+// from a fresh basis with the textbook ratio test, then, as a last resort and only where it
+// ends in reasonable time (kExactRows), in exact rational arithmetic, so a run never hangs and
+// never reports a status GLPK did not prove. An unbounded LP (a collapse) counts as proved only
+// where GLPK's ray is a mechanism of the LP's rows (is_mechanism): on an ill-conditioned LP a
+// simplex that lost its accuracy can miss the row that bounds it.
 LpStatus solve(Model& m) {
   glp_prob* lp = m.lp.get();
   glp_smcp parm;
@@ -217,9 +266,12 @@ LpStatus solve(Model& m) {
   parm.msg_lev = GLP_MSG_OFF;
   parm.meth = GLP_PRIMAL;
   parm.it_lim = 1000 + 50 * (glp_get_num_rows(lp) + glp_get_num_cols(lp));
-  auto conclusive = [&](int rc) {
+  // The exact simplex's statuses are proved in rational arithmetic (and it names no ray).
+  auto conclusive = [&](int rc, bool rational = false) {
+    if (rc != 0) return false;
     const int st = glp_get_status(lp);
-    return rc == 0 && (st == GLP_OPT || st == GLP_UNBND || st == GLP_NOFEAS);
+    if (st == GLP_UNBND) return rational || is_mechanism(m, unbounded_ray(m));
+    return st == GLP_OPT || st == GLP_NOFEAS;
   };
   const auto t0 = cpu_now();
   // A fresh LP: GLPK's standard basis (every row slack basic) makes the simplex bring each
@@ -245,19 +297,32 @@ LpStatus solve(Model& m) {
   if (m.fresh && advanced) quiet_adv_basis(lp);
   m.fresh = false;
   int rc = simplex(lp, parm);
-  if (!conclusive(rc)) {
+  bool done = conclusive(rc);
+  if (!done) {
     quiet_adv_basis(lp);
     parm.r_test = GLP_RT_STD;
     rc = simplex(lp, parm);
+    done = conclusive(rc);
   }
-  if (!conclusive(rc)) {
+  const int rows = glp_get_num_rows(lp);
+  if (!done && rows <= kExactRows) {
     quiet_adv_basis(lp);
     rc = exact(lp, parm);
+    done = conclusive(rc, true);
   }
   keep_basis(m);
   m.lp_s += seconds_since(t0);
   ++m.lp_solves;
-  if (!conclusive(rc)) throw std::runtime_error("GLPK could not solve the step's LP (code " + std::to_string(rc) + ")");
+  if (!done) {
+    std::string why = "GLPK could not solve the step's LP (" + std::to_string(rows) + " rows, " + std::to_string(m.ncols) + " columns): ";
+    if (rc == 0 && glp_get_status(lp) == GLP_UNBND)
+      why += "its simplex called it unbounded, but its ray is no mechanism (a corner penetrates or a closed joint slides along it)";
+    else
+      why += "its simplex failed (code " + std::to_string(rc) + ") from its start and again from a fresh basis";
+    if (rows > kExactRows)
+      why += "; too large for the exact fallback (at most " + std::to_string(kExactRows) + " rows): prd/README.md, \"Known limits\"";
+    throw std::runtime_error(why);
+  }
   switch (glp_get_status(lp)) {
     case GLP_OPT: return LpStatus::optimal;
     case GLP_UNBND: return LpStatus::unbounded;
