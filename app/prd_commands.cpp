@@ -43,7 +43,11 @@ void warn_lp_cost(const Case& c, const char* cmd, double seconds_per_block_squar
   const double estimate = seconds_per_block_squared * n * n;
   if (estimate < 5) return;
   std::cerr << "masonry " << cmd << ": " << n << " free blocks: the first LP alone takes about " << static_cast<long>(estimate)
-            << " s (it grows with the square of the blocks)\n";
+            << " s (it grows with the square of the blocks)";
+  // From about 6,000 blocks GLPK's simplex has failed from the advanced basis on walls, and its
+  // standard basis then took minutes (6,442 blocks: 130 s; prd/README.md, "Known limits").
+  if (n >= 6000) std::cerr << ", or minutes where GLPK must fall back on its standard basis";
+  std::cerr << "\n";
 }
 
 // `masonry check --step H [--hold CORNER ...]`: at the case's contact tolerance, holding its corners.

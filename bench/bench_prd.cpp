@@ -19,15 +19,20 @@ namespace {
 
 masonry::Case standard(const std::string& name) { return masonry::load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/" + name + ".json"); }
 
-void count_run(benchmark::State& state, const masonry::RunResult& r, double first_lp_s) {
-  // A run that ended in an error is no timing of the run asked for.
-  if (r.status == masonry::RunStatus::error) state.SkipWithError(r.message.c_str());
+// False (and the benchmark marked skipped: a run that ended in an error is no timing of the run
+// asked for) where the run failed; the caller then leaves its loop, as Google Benchmark asks.
+bool count_run(benchmark::State& state, const masonry::RunResult& r, double first_lp_s) {
+  if (r.status == masonry::RunStatus::error) {
+    state.SkipWithError(r.message.c_str());
+    return false;
+  }
   state.counters["capacity_m"] = r.capacity;
   state.counters["lp_solves"] = static_cast<double>(r.timing.lp_solves);
   state.counters["kept_basis_solves"] = static_cast<double>(r.timing.kept_basis_solves);
   state.counters["total_s"] = r.timing.total_s;
   state.counters["lp_s"] = r.timing.lp_s;
   state.counters["first_lp_s"] = first_lp_s;
+  return true;
 }
 
 void capacity_run(benchmark::State& state, const std::string& name, bool adaptive) {
@@ -38,7 +43,7 @@ void capacity_run(benchmark::State& state, const std::string& name, bool adaptiv
   for (auto _ : state) {
     const masonry::RunResult r = masonry::prd_run(c, s);
     benchmark::DoNotOptimize(r.capacity);
-    count_run(state, r, -1);
+    if (!count_run(state, r, -1)) break;
     state.counters["basis_evals"] = static_cast<double>(r.timing.basis_evaluations);
     lp_share = r.timing.lp_s / r.timing.total_s;
   }
@@ -58,7 +63,7 @@ void prd_wall(benchmark::State& state) {
       if (first_lp_s < 0) first_lp_s = at.timing.lp_s;
     });
     benchmark::DoNotOptimize(r.capacity);
-    count_run(state, r, first_lp_s);
+    if (!count_run(state, r, first_lp_s)) break;
   }
   state.counters["blocks"] = static_cast<double>(c.blocks.size());
 }

@@ -215,7 +215,8 @@ LpStatus solve(Model& m);
 // minute and a 6,442-block wall's 76,320 rows ran for hours.
 constexpr int kExactRows = 10000;
 // How far a row may fail a collapse mechanism's conditions, relative to its largest increment
-// (is_mechanism): round-off on O(1) coefficients is far below it, a lost row far above.
+// (is_mechanism): round-off on the O(1) coefficients is far below it, and it is a thousand times
+// the pivot tolerance below which GLPK's own ratio test ignores a row (1e-10).
 constexpr double kRayTolerance = 1e-7;
 bool is_mechanism(const Model& m, const std::vector<double>& du);  // du per column, 1-based
 // The direction GLPK's primal simplex found the last LP unbounded along (per column, 1-based;

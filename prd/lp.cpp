@@ -254,11 +254,13 @@ std::vector<double> unbounded_ray(const Model& m) {
 
 // Runs the primal simplex from the previous step's basis (the warm start that makes a run
 // fast). Degenerate LPs can stall; an iteration limit catches that, and the solve is repeated
-// from a fresh basis with the textbook ratio test, then, as a last resort and only where it
-// ends in reasonable time (kExactRows), in exact rational arithmetic, so a run never hangs and
-// never reports a status GLPK did not prove. An unbounded LP (a collapse) counts as proved only
-// where GLPK's ray is a mechanism of the LP's rows (is_mechanism): on an ill-conditioned LP a
-// simplex that lost its accuracy can miss the row that bounds it.
+// from a fresh advanced basis with the textbook ratio test; then, on an LP small enough for it
+// to end in reasonable time (kExactRows), in exact rational arithmetic, and on a larger one from
+// GLPK's standard basis (prd/README.md, "Known limits": where the simplex fails from the
+// advanced basis on large walls, it solved them from the standard one); so a run never hangs
+// and never reports a status GLPK did not prove. An unbounded LP (a collapse) counts as proved
+// only where GLPK's ray is a mechanism of the LP's rows (is_mechanism): a simplex that lost its
+// accuracy can miss the row that bounds it.
 LpStatus solve(Model& m) {
   glp_prob* lp = m.lp.get();
   glp_smcp parm;
@@ -295,6 +297,7 @@ LpStatus solve(Model& m) {
   }
   sync_glpk(m);
   if (m.fresh && advanced) quiet_adv_basis(lp);
+  const bool started_standard = m.fresh && !advanced;
   m.fresh = false;
   int rc = simplex(lp, parm);
   bool done = conclusive(rc);
@@ -310,6 +313,22 @@ LpStatus solve(Model& m) {
     rc = exact(lp, parm);
     done = conclusive(rc, true);
   }
+  // Too large for the exact simplex: GLPK's standard basis, where the first try did not start
+  // from it. On walls of 6,000 blocks and more the simplex fails from the advanced basis after
+  // some 2,000 pivots, and from the standard one it solved the 6,442-block wall's first LP in
+  // 24,888 pivots, a quarter of its rows and columns: their number is its iteration limit here.
+  const bool standard_tried = !done && !started_standard && rows > kExactRows;
+  if (standard_tried) {
+    glp_smcp standard = parm;
+    standard.r_test = GLP_RT_HAR;
+    standard.it_lim = rows + glp_get_num_cols(lp);
+    glp_std_basis(lp);
+    // A failed try leaves GLPK holding the factors of the basis it failed at; should the
+    // standard basis be the one it started from, glp_std_basis would not drop them.
+    prd::glpk_guarded([&] { return glp_factorize(lp); });
+    rc = simplex(lp, standard);
+    done = conclusive(rc);
+  }
   keep_basis(m);
   m.lp_s += seconds_since(t0);
   ++m.lp_solves;
@@ -318,9 +337,12 @@ LpStatus solve(Model& m) {
     if (rc == 0 && glp_get_status(lp) == GLP_UNBND)
       why += "its simplex called it unbounded, but its ray is no mechanism (a corner penetrates or a closed joint slides along it)";
     else
-      why += "its simplex failed (code " + std::to_string(rc) + ") from its start and again from a fresh basis";
+      why += "its simplex failed (code " + std::to_string(rc) + ") from its start and from GLPK's advanced basis" +
+             (standard_tried ? " and standard basis" : "");
     if (rows > kExactRows)
       why += "; too large for the exact fallback (at most " + std::to_string(kExactRows) + " rows): prd/README.md, \"Known limits\"";
+    else
+      why += ", and so did its exact simplex";
     throw std::runtime_error(why);
   }
   switch (glp_get_status(lp)) {

@@ -69,6 +69,24 @@ TEST(PrdCollapseRay, OnlyARigidFallWithoutSlidingOrPenetrationIsAMechanism) {
   EXPECT_FALSE(is_mechanism(m, {}));
 }
 
+// The tolerance is relative to the motion's size and tight: a toppling with a slip of 1e-5 of
+// its size along the joint is refused, one of 1e-10 (round-off) accepted, at any size.
+TEST(PrdCollapseRay, ASlipAboveRoundOffIsRefusedAtAnySize) {
+  const Case c = block_on_slope();
+  Model m = build_model(c, c.prd.contact_tolerance);
+  update_lp(m, c.motion.step, c.motion.step, c.motion.step);
+  const Vec2 along = turned(1, 0) - turned(0, 0);
+  for (const double size : {1.0, 1e-6}) {
+    const std::vector<double> topple = rocking(m, turned(0, 0), size);
+    for (const double slip : {1e-5, 1e-10}) {
+      std::vector<double> du = topple;
+      const std::vector<double> sliding = motion(m, -slip * size * along, 0);
+      for (size_t j = 0; j < du.size(); ++j) du[j] += sliding[j];
+      EXPECT_EQ(is_mechanism(m, du), slip < 1e-7) << "size " << size << ", slip " << slip;
+    }
+  }
+}
+
 // GLPK's own ray, read from its final basis, passes the check and is the rocking about the
 // downhill corner: its velocity there is zero and it turns the block downhill.
 TEST(PrdCollapseRay, GlpksRayOfAnUnstableBlockIsItsToppling) {
