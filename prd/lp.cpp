@@ -267,7 +267,11 @@ LpStatus solve(Model& m) {
   glp_init_smcp(&parm);
   parm.msg_lev = GLP_MSG_OFF;
   parm.meth = GLP_PRIMAL;
-  parm.it_lim = 1000 + 50 * (glp_get_num_rows(lp) + glp_get_num_cols(lp));
+  // Fifty pivots per variable catch a stall on an LP the exact simplex can take next; on a
+  // larger one that would be hours (a pivot costs milliseconds there), so one per variable: the
+  // first LP of walls takes a tenth of that from the advanced basis, a quarter from the standard.
+  const int vars = glp_get_num_rows(lp) + glp_get_num_cols(lp);
+  parm.it_lim = glp_get_num_rows(lp) <= kExactRows ? 1000 + 50 * vars : vars;
   // The exact simplex's statuses are proved in rational arithmetic (and it names no ray).
   auto conclusive = [&](int rc, bool rational = false) {
     if (rc != 0) return false;
@@ -316,12 +320,11 @@ LpStatus solve(Model& m) {
   // Too large for the exact simplex: GLPK's standard basis, where the first try did not start
   // from it. On walls of 6,000 blocks and more the simplex fails from the advanced basis after
   // some 2,000 pivots, and from the standard one it solved the 6,442-block wall's first LP in
-  // 24,888 pivots, a quarter of its rows and columns: their number is its iteration limit here.
+  // 24,888 pivots, a quarter of its rows and columns.
   const bool standard_tried = !done && !started_standard && rows > kExactRows;
   if (standard_tried) {
     glp_smcp standard = parm;
     standard.r_test = GLP_RT_HAR;
-    standard.it_lim = rows + glp_get_num_cols(lp);
     glp_std_basis(lp);
     // A failed try leaves GLPK holding the factors of the basis it failed at; should the
     // standard basis be the one it started from, glp_std_basis would not drop them.
