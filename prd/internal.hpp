@@ -109,6 +109,14 @@ struct Model {
   double gap(const Endpoint& e) const { return (on_j(e) - on_i(e)).dot(normal(e)); }
   // Whether endpoint e carries its joint's no-sliding row (see the top of this file).
   bool sliding_row(size_t e) const { return ends[e].closed && (ends[e].corner == 0 || !ends[e - 1].closed); }
+  // LP row i's activity (0-based, as update_lp wrote it) for column values x (1-based).
+  double row_activity(size_t i, const std::vector<double>& x) const {
+    const double* held = &row_coef[7 * i];
+    const int* cols = &row_cols[6 * i];
+    double s = 0;
+    for (int q = 0; q < static_cast<int>(held[0]); ++q) s += held[q + 1] * x[cols[q]];
+    return s;
+  }
 };
 
 // Prescribed small increment of a support at the current configuration, for a step h.

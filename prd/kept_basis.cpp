@@ -149,10 +149,7 @@ bool solve_by_kept_basis(Model& m) {
   for (int row : k.rows) v.nonbasic[row - 1] = 1;
   v.row.resize(nr);
   for (int i = 0; i < nr; ++i) {
-    const double* held = &m.row_coef[7 * i];
-    const int* cols = &m.row_cols[6 * i];
-    double s = 0;
-    for (int q = 0; q < static_cast<int>(held[0]); ++q) s += held[q + 1] * v.x[cols[q]];
+    const double s = m.row_activity(i, v.x);
     // A nonbasic row's activity is its bound (or zero, free), exactly, as GLPK gives it.
     v.row[i] = !v.nonbasic[i] ? s : m.row_type[i] == GLP_FR ? 0.0 : m.row_lb[i];
     if (v.nonbasic[i] || m.row_type[i] == GLP_FR) continue;

@@ -222,9 +222,7 @@ bool is_mechanism(const Model& m, const std::vector<double>& du) {
   if (!(size > 0) || !std::isfinite(size) || !(work < 0)) return false;
   for (size_t i = 0; i < m.row_type.size(); ++i) {
     if (m.row_type[i] == GLP_FR) continue;
-    const double* held = &m.row_coef[7 * i];
-    double rate = 0;
-    for (int k = 1; k <= static_cast<int>(held[0]); ++k) rate += held[k] * du[m.row_cols[6 * i + k - 1]];
+    const double rate = m.row_activity(i, du);
     if (rate < -kRayTolerance * size) return false;
     if (m.row_type[i] == GLP_FX && rate > kRayTolerance * size) return false;
   }
