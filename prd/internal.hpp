@@ -63,8 +63,11 @@ inline thread_local bool t_use_kept_basis = true;
 // From this many free blocks up a run's first LP starts from GLPK's advanced basis (solve).
 constexpr int kAdvancedBasisBlocks = 300;
 // How the first solve of a model starts: GLPK's advanced basis from kAdvancedBasisBlocks free
-// blocks up (a run), always (a single analysis), or never (the standard basis: tests compare).
-enum class FirstBasis { by_size, advanced, standard };
+// blocks up (a run), always (a single analysis), or never (the standard basis: tests compare);
+// or the structure's load path by the dual simplex (set_static_basis; where the load path is not
+// admissible, the advanced basis): solve() takes it from kAdvancedBasisBlocks free blocks up where
+// it is optimal as it stands, and on large LPs where the primal simplex failed; tests compare.
+enum class FirstBasis { by_size, advanced, standard, statics };
 
 struct Model {
   const Case* c = nullptr;
@@ -216,6 +219,10 @@ Model build_model(const Case& c, double tol);
 std::vector<double> generalised_loads(const Model& m);  // N (and N m / L_b)
 void update_lp(Model& m, double h, double scale, double h_open = 0);
 void sync_glpk(Model& m);
+// Sets GLPK's basis to one built from the statics of the structure as it stands, after update_lp
+// (static_basis.cpp): true where every free block found rows that carry its loads in compression,
+// so the basis is dual feasible; false, the basis untouched, otherwise.
+bool set_static_basis(Model& m);
 LpStatus solve(Model& m);
 // GLPK's exact (rational) simplex, solve()'s last resort, only up to this many rows: its time
 // grows as the rows to the power 2.2 (the first LP of generated walls from the advanced basis:

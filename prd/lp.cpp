@@ -199,6 +199,16 @@ int exact(glp_prob* lp, const glp_smcp& parm) {
   return prd::glpk_guarded([&] { return glp_exact(lp, &parm); });
 }
 
+// GLPK's basis set to the structure's load path (set_static_basis) and evaluated: true where that
+// basis is dual feasible by GLPK's own test (an admissible force state), so that the LP is
+// bounded and the dual simplex can start from it.
+bool start_from_statics(Model& m) {
+  glp_prob* lp = m.lp.get();
+  if (!set_static_basis(m)) return false;
+  if (prd::glpk_guarded([&] { return glp_warm_up(lp); }) != 0) return false;
+  return glp_get_dual_stat(lp) == GLP_FEAS;
+}
+
 // glp_adv_basis prints whatever msg_lev says; the harness's output is its own.
 void quiet_adv_basis(glp_prob* lp) {
   const int was = glp_term_out(GLP_OFF);
@@ -289,7 +299,9 @@ LpStatus solve(Model& m) {
   // which one the LP's duals are, and the standard scenes (at most 276 blocks) keep theirs (the
   // cathedral's aisles: 1.3% of the weight apart; mechanisms and capacities are the same from
   // either start, tests/prd/first_basis_test.cpp).
-  const bool advanced = m.first_basis == FirstBasis::advanced || (m.first_basis == FirstBasis::by_size && m.ncols >= 3 * kAdvancedBasisBlocks);
+  const bool large = m.ncols >= 3 * kAdvancedBasisBlocks;
+  const bool advanced =
+      m.first_basis == FirstBasis::advanced || m.first_basis == FirstBasis::statics || (m.first_basis == FirstBasis::by_size && large);
   // Most LPs after the first are solved by the basis of the one before (kept_basis.hpp).
   if (!m.fresh && m.kept_basis_allowed && t_use_kept_basis && solve_by_kept_basis(m)) {
     m.lp_s += seconds_since(t0);
@@ -298,18 +310,42 @@ LpStatus solve(Model& m) {
     return LpStatus::optimal;
   }
   sync_glpk(m);
-  if (m.fresh && advanced) quiet_adv_basis(lp);
+  const int rows = glp_get_num_rows(lp);
+  int rc = 0;
+  bool done = false;
+  auto try_simplex = [&](const glp_smcp& how) {
+    rc = simplex(lp, how);
+    done = conclusive(rc);
+  };
+  // A large structure whose own load path (static_basis.cpp) is still admissible after the step
+  // is solved by it: GLPK's dual simplex confirms it without a pivot (`check` on a standing wall
+  // of 10,052 blocks: 0.4 s in all, where the advanced basis fails and the standard one takes
+  // minutes; prd/README.md, "The LP at scale"). Not on the smaller ones: the standard scenes keep
+  // the force states of their starts, as above. Where the step makes the load path infeasible
+  // the primal simplex from the advanced basis goes on: the dual simplex from the load path
+  // solved the settling 10,052-block wall's first LP in 16,769 pivots and 141 s, but ended on
+  // another optimal vertex of that degenerate LP (as on a 12-course wall, where the wall turns
+  // about a point over its centre of gravity, which stands over the still ground's edge: no work),
+  // from which the second LP took minutes. (FirstBasis::
+  // statics: from the load path by the dual simplex wherever it is admissible, for the tests.)
+  const bool statics = m.first_basis == FirstBasis::statics;
+  if (m.fresh && (statics || (advanced && large)) && start_from_statics(m) && (statics || glp_get_prim_stat(lp) == GLP_FEAS)) {
+    m.fresh = false;
+    glp_smcp dual = parm;
+    dual.meth = GLP_DUAL;
+    try_simplex(dual);
+  }
   const bool started_standard = m.fresh && !advanced;
-  m.fresh = false;
-  int rc = simplex(lp, parm);
-  bool done = conclusive(rc);
+  if (!done) {
+    if (m.fresh && advanced) quiet_adv_basis(lp);
+    m.fresh = false;
+    try_simplex(parm);
+  }
   if (!done) {
     quiet_adv_basis(lp);
     parm.r_test = GLP_RT_STD;
-    rc = simplex(lp, parm);
-    done = conclusive(rc);
+    try_simplex(parm);
   }
-  const int rows = glp_get_num_rows(lp);
   if (!done && rows <= kExactRows) {
     quiet_adv_basis(lp);
     rc = exact(lp, parm);
@@ -327,8 +363,7 @@ LpStatus solve(Model& m) {
     // A failed try leaves GLPK holding the factors of the basis it failed at; should the
     // standard basis be the one it started from, glp_std_basis would not drop them.
     prd::glpk_guarded([&] { return glp_factorize(lp); });
-    rc = simplex(lp, standard);
-    done = conclusive(rc);
+    try_simplex(standard);
   }
   keep_basis(m);
   m.lp_s += seconds_since(t0);
