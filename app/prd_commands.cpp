@@ -48,7 +48,7 @@ void warn_lp_cost(const Case& c, const char* cmd, double seconds_per_block_squar
   // standard basis then took minutes (6,442 blocks: 130 s; prd/README.md, "Known limits").
   if (n >= 6000) std::cerr << ", or minutes where GLPK must fall back on its standard basis";
   // The structure as it stands: where each block's loads go down through the joints below it,
-  // that load path is the LP's optimum (prd/static_basis.cpp; a 10,052-block wall: 0.4 s).
+  // that load path is the LP's optimum (prd/static_basis.cpp; a 10,052-block wall: 0.5 s).
   if (as_it_stands) std::cerr << "; under a second where the loads go down through the joints to the supports";
   std::cerr << "\n";
 }

@@ -319,15 +319,15 @@ LpStatus solve(Model& m) {
   };
   // A large structure whose own load path (static_basis.cpp) is still admissible after the step
   // is solved by it: GLPK's dual simplex confirms it without a pivot (`check` on a standing wall
-  // of 10,052 blocks: 0.4 s in all, where the advanced basis fails and the standard one takes
-  // minutes; prd/README.md, "The LP at scale"). Not on the smaller ones: the standard scenes keep
-  // the force states of their starts, as above. Where the step makes the load path infeasible
-  // the primal simplex from the advanced basis goes on: the dual simplex from the load path
-  // solved the settling 10,052-block wall's first LP in 16,769 pivots and 141 s, but ended on
-  // another optimal vertex of that degenerate LP (as on a 12-course wall, where the wall turns
-  // about a point over its centre of gravity, which stands over the still ground's edge: no work),
-  // from which the second LP took minutes. (FirstBasis::
-  // statics: from the load path by the dual simplex wherever it is admissible, for the tests.)
+  // of 10,052 blocks: 0.5 s in all; 68 s before, where the advanced basis fails and the standard
+  // one solves it; prd/README.md, "The load path"). Not on the smaller ones: the standard scenes
+  // keep the force states of their starts, as above. Where the step makes the load path
+  // infeasible the primal simplex from the advanced basis goes on: the dual simplex from the
+  // load path solved the settling 10,052-block wall's first LP in 16,769 pivots and 141 s, but
+  // ended on another optimum of that degenerate LP (on a 12-course wall: the wall turning about a
+  // point over its centre of gravity, which stands over the still ground's edge, at no work),
+  // from which the second LP took minutes. FirstBasis::statics (the tests): from the load path
+  // by the dual simplex wherever it is admissible.
   const bool statics = m.first_basis == FirstBasis::statics;
   if (m.fresh && (statics || (advanced && large)) && start_from_statics(m) && (statics || glp_get_prim_stat(lp) == GLP_FEAS)) {
     m.fresh = false;
