@@ -66,7 +66,7 @@ constexpr int kAdvancedBasisBlocks = 300;
 // blocks up (a run), always (a single analysis), or never (the standard basis: tests compare);
 // or the structure's load path by the dual simplex (set_static_basis; where the load path is not
 // admissible, the advanced basis): solve() takes it from kAdvancedBasisBlocks free blocks up where
-// it is optimal as it stands, and on large LPs where the primal simplex failed; tests compare.
+// it is optimal as it stands; `statics` takes it wherever it is admissible (tests compare).
 enum class FirstBasis { by_size, advanced, standard, statics };
 
 struct Model {
@@ -103,6 +103,7 @@ struct Model {
   long long lp_solves = 0;
   long long basis_evaluations = 0;
   long long kept_basis_solves = 0;  // LPs solved by the kept basis, without GLPK (kept_basis.hpp)
+  long long load_path_solves = 0;   // LPs solved from the load path (set_static_basis)
 
   Vec2 pos(int b, const Vec2& X) const { return cen[b] + rot(angle[b]) * (X - c0[b]); }
   Vec2 normal(const Endpoint& e) const { return rot(angle[joints[e.joint].i]) * joints[e.joint].normal; }
@@ -112,6 +113,16 @@ struct Model {
   double gap(const Endpoint& e) const { return (on_j(e) - on_i(e)).dot(normal(e)); }
   // Whether endpoint e carries its joint's no-sliding row (see the top of this file).
   bool sliding_row(size_t e) const { return ends[e].closed && (ends[e].corner == 0 || !ends[e - 1].closed); }
+  // LP row i's coefficients (0-based, as update_lp wrote them) on the three columns of the block
+  // whose first column is k.
+  Eigen::Vector3d row_on_block(size_t i, int k) const {
+    Eigen::Vector3d a = Eigen::Vector3d::Zero();
+    const double* held = &row_coef[7 * i];
+    const int* cols = &row_cols[6 * i];
+    for (int q = 0; q < static_cast<int>(held[0]); ++q)
+      if (cols[q] >= k && cols[q] < k + 3) a[cols[q] - k] += held[q + 1];
+    return a;
+  }
   // LP row i's activity (0-based, as update_lp wrote it) for column values x (1-based).
   double row_activity(size_t i, const std::vector<double>& x) const {
     const double* held = &row_coef[7 * i];

@@ -330,10 +330,12 @@ LpStatus solve(Model& m) {
   // by the dual simplex wherever it is admissible.
   const bool statics = m.first_basis == FirstBasis::statics;
   if (m.fresh && (statics || (advanced && large)) && start_from_statics(m) && (statics || glp_get_prim_stat(lp) == GLP_FEAS)) {
-    m.fresh = false;
     glp_smcp dual = parm;
     dual.meth = GLP_DUAL;
     try_simplex(dual);
+    // Where it failed, the LP stays fresh: the advanced basis next, which also drops the factors
+    // GLPK keeps of the basis a failed simplex stopped at.
+    if (done) m.fresh = false, ++m.load_path_solves;
   }
   const bool started_standard = m.fresh && !advanced;
   if (!done) {

@@ -1,50 +1,34 @@
 // A first basis built from the statics of the structure as it stands: every column basic and,
 // per free block, three of its rows nonbasic whose forces carry the block's loads, and those of
-// the blocks resting on it, into blocks further down (prd/README.md, "The LP at scale").
+// the blocks resting on it, into blocks further down (prd/README.md, "The load path").
 //
 // Where every block finds such rows with compressive normal forces, the basis is dual feasible
 // (its duals are an admissible force state: equilibrium, no tension), and GLPK's dual simplex
-// takes the step from it. The blocks are taken from the top down (against gravity's direction,
-// y), so each block's loads are known when it is reached and the basis matrix is block
-// triangular: each block's 3 x 3 system must be regular. Among a block's admissible choices the
-// one whose smallest normal force is largest is taken (for a brick on two, its outer corners).
+// can start from it. The blocks are taken from the top down (against gravity's direction, y),
+// so each block's loads are known when it is reached and the basis matrix is block triangular:
+// each block's 3 x 3 system must be regular. Among a block's admissible choices the one with the
+// least sum of |force| is taken (for a brick on two, its outer corners and a shear).
 #include <glpk.h>
 
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <limits>
 #include <vector>
 
 #include "prd/internal.hpp"
 
 namespace masonry::prd_detail {
 
-namespace {
-
-// Row i's coefficients (0-based row) on the three columns of the block whose first column is k.
-Eigen::Vector3d coefficients_on(const Model& m, size_t i, int k) {
-  Eigen::Vector3d a = Eigen::Vector3d::Zero();
-  const double* held = &m.row_coef[7 * i];
-  const int* cols = &m.row_cols[6 * i];
-  for (int q = 0; q < static_cast<int>(held[0]); ++q)
-    if (cols[q] >= k && cols[q] < k + 3) a[cols[q] - k] += held[q + 1];
-  return a;
-}
-
-}  // namespace
-
 bool set_static_basis(Model& m) {
   const Case& c = *m.c;
   const size_t nb = c.blocks.size();
   if (m.row_coef.empty() || m.ncols == 0) return false;
-  // Top down: a block's rank is its place in that order; supports come last.
+  // Top down.
   std::vector<int> order;
   for (size_t b = 0; b < nb; ++b)
     if (m.col[b] > 0) order.push_back(static_cast<int>(b));
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return m.cen[a].y() > m.cen[b].y(); });
-  std::vector<int> rank(nb, static_cast<int>(nb));
-  for (size_t r = 0; r < order.size(); ++r) rank[order[r]] = static_cast<int>(r);
   // The rows that can carry a force, per block: closed corners' and no-sliding rows.
   std::vector<std::vector<int>> rows_of(nb);
   for (size_t e = 0; e < m.ends.size(); ++e) {
@@ -67,11 +51,12 @@ bool set_static_basis(Model& m) {
     for (int row : rows_of[b]) {
       const Interface& jt = m.joints[m.ends[row / 2].joint];
       const int other = jt.i == b ? jt.j : jt.i;
-      // Rows to blocks above are theirs to choose; a neighbour at the same height (a head joint)
-      // would pass loads sideways from block to block along a course.
-      if (rank[other] <= rank[b] || (m.col[other] > 0 && !(m.cen[other].y() < m.cen[b].y() - 1e-9 * m.radius[b]))) continue;
+      // Only rows to supports and to blocks lower down: rows to blocks above are theirs to
+      // choose, and a neighbour at the same height (a head joint) would pass loads sideways from
+      // block to block along a course.
+      if (m.col[other] > 0 && !(m.cen[other].y() < m.cen[b].y() - 1e-9 * m.radius[b])) continue;
       cand.push_back(row);
-      a.push_back(coefficients_on(m, static_cast<size_t>(row), k));
+      a.push_back(m.row_on_block(static_cast<size_t>(row), k));
     }
     const Eigen::Vector3d r = rest[b];
     double best = -std::numeric_limits<double>::infinity();
@@ -105,7 +90,7 @@ bool set_static_basis(Model& m) {
       chosen[row] = 1;
       const Interface& jt = m.joints[m.ends[row / 2].joint];
       const int other = jt.i == b ? jt.j : jt.i;
-      if (m.col[other] > 0) rest[other] -= best_f[t] * coefficients_on(m, static_cast<size_t>(row), m.col[other]);
+      if (m.col[other] > 0) rest[other] -= best_f[t] * m.row_on_block(static_cast<size_t>(row), m.col[other]);
     }
   }
   glp_prob* lp = m.lp.get();
