@@ -173,6 +173,7 @@ struct Accepted {
   std::vector<Vec2> cen;
   std::vector<double> angle;
   std::vector<char> closed;             // the contact state its LP used
+  std::vector<Vec2> X, Xj;              // its corners' material points (Endpoint; close_corners moves them)
   std::vector<double> U, gap, rate;     // its LP's mechanism, gaps and their rates
   std::vector<double> dU;               // the mechanism's change along d (empty: not known)
   double h_lp = 0;                      // the step its LP was solved with
@@ -284,6 +285,7 @@ void pose_after(const Model& m, const Path& path, size_t b, double h, Vec2& cen,
 void advance(Model& m, const Path& path, double h);
 double gap_after(const Model& m, const Path& U, size_t e, double h);
 void set_closed(Model& m, const std::vector<char>& closed);
+void close_corners(Model& m, const std::vector<char>& closed);
 StepRecord configuration_record(const Model& m, int index, double d);
 
 // ---- events.cpp: where the next event is, for adaptive runs.

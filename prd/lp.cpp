@@ -281,11 +281,18 @@ LpStatus solve(Model& m) {
   const int vars = glp_get_num_rows(lp) + glp_get_num_cols(lp);
   parm.it_lim = glp_get_num_rows(lp) <= kExactRows ? 1000 + 50 * vars : vars;
   // The exact simplex's statuses are proved in rational arithmetic (and it names no ray).
-  auto conclusive = [&](int rc, bool rational = false) {
+  // "No feasible point" ends the run as an error, so in double precision it is taken only where
+  // the simplex found it from two starts of GLPK's own (the advanced and the standard basis):
+  // from the previous step's basis, and once also from the advanced basis, GLPK's first phase
+  // has called feasible LPs infeasible (stack-bond walls whose settling half lands on its
+  // ground; an elastic LP over the same rows met every row, and the standard basis solved them).
+  int no_feasible_starts = 0;
+  auto conclusive = [&](int rc, bool rational = false, bool own_start = true) {
     if (rc != 0) return false;
     const int st = glp_get_status(lp);
     if (st == GLP_UNBND) return rational || is_mechanism(m, unbounded_ray(m));
-    return st == GLP_OPT || st == GLP_NOFEAS;
+    if (st == GLP_NOFEAS) return rational || (own_start && ++no_feasible_starts >= 2);
+    return st == GLP_OPT;
   };
   const auto t0 = cpu_now();
   // A fresh LP: GLPK's standard basis (every row slack basic) makes the simplex bring each
@@ -313,9 +320,9 @@ LpStatus solve(Model& m) {
   const int rows = glp_get_num_rows(lp);
   int rc = 0;
   bool done = false;
-  auto try_simplex = [&](const glp_smcp& how) {
+  auto try_simplex = [&](const glp_smcp& how, bool own_start = true) {
     rc = simplex(lp, how);
-    done = conclusive(rc);
+    done = conclusive(rc, false, own_start);
   };
   // A large structure whose own load path (static_basis.cpp) is still admissible after the step
   // is solved by it: GLPK's dual simplex confirms it without a pivot (`check` on a standing wall
@@ -338,9 +345,25 @@ LpStatus solve(Model& m) {
     if (done) m.fresh = false, ++m.load_path_solves;
   }
   const bool started_standard = m.fresh && !advanced;
+  bool warm = false;  // the simplex started from the previous LP's basis
   if (!done) {
+    warm = !m.fresh;
     if (m.fresh && advanced) quiet_adv_basis(lp);
     m.fresh = false;
+    try_simplex(parm, !warm);
+  }
+  // Where the simplex failed from the previous basis, or found no feasible point from it, the
+  // same simplex from the advanced basis (stack-bond walls of 100 blocks whose settling half
+  // lands on its ground: it then solved the LP at once, where the textbook ratio test failed
+  // and the exact simplex took 40-60 s). "No feasible point" from one of GLPK's own starts is
+  // checked from the standard basis.
+  if (!done && warm) {
+    quiet_adv_basis(lp);
+    try_simplex(parm);
+  }
+  if (!done && rc == 0 && glp_get_status(lp) == GLP_NOFEAS) {
+    glp_std_basis(lp);
+    prd::glpk_guarded([&] { return glp_factorize(lp); });  // drops the factors of the basis it stopped at
     try_simplex(parm);
   }
   if (!done) {
@@ -469,8 +492,23 @@ Mechanism collapse_mechanism(Model& m, double scale) {
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_DB, -1, 1);
   m.kept.rows.clear();  // its vertex ignores the boxes
   Mechanism out;
-  if (solve(m) == LpStatus::optimal) {
-    const std::vector<double> s = slacks(m, scale);
+  LpStatus st = solve(m);
+  // Where the step's own motion does not fit in the boxes (the settling cathedral: some
+  // increment over a unit of the step), the mechanism is the LP's ray itself: the directions
+  // in which every row's left-hand side keeps its sign, the LP with every bound at zero, boxed.
+  // The step's bounds go back to GLPK at its next solve.
+  const bool ray = st != LpStatus::optimal;
+  if (ray) {
+    for (size_t i = 0; i < m.row_type.size(); ++i)
+      if (m.row_type[i] != GLP_FR) glp_set_row_bnds(lp, static_cast<int>(i) + 1, m.row_type[i], 0, 0);
+    st = solve(m);
+    m.glpk_behind = true;
+  }
+  if (st == LpStatus::optimal) {
+    // Open: at the end of the boxed step; along the ray, where it opens or is open already.
+    std::vector<double> s = slacks(m, scale);
+    if (ray)
+      for (size_t e = 0; e < m.ends.size(); ++e) s[e] = std::max(row_prim(m, 2 * static_cast<int>(e) + 1) * scale, m.gap(m.ends[e]) - m.tol);
     for (size_t e = 0; e < m.ends.size(); ++e)
       if (s[e] > 1e-6 * scale) out.open_corners.push_back({m.ends[e].joint, m.ends[e].corner});
     for (size_t b = 0; b < m.col.size(); ++b) {

@@ -221,6 +221,41 @@ void set_closed(Model& m, const std::vector<char>& closed) {
   for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = closed[e];
 }
 
+namespace {
+// Corner e's material points made to agree along the joint, where they are now: the copy that is
+// not the contact point (the point of the other block's face, as in start_from) moves along the
+// face to the contact point. The gap across the joint is left as it is, for the no-penetration
+// row to take back. Returns the tangential offset removed, m.
+double slip_to_zero(Model& m, size_t e) {
+  const Case& c = *m.c;
+  Endpoint& ep = m.ends[e];
+  const Interface& jt = m.joints[ep.joint];
+  const Vec2 pi = m.on_i(ep), pj = m.on_j(ep), t = perp(m.normal(ep));
+  const double slip = (pj - pi).dot(t);
+  const bool ci = is_vertex(c.blocks[jt.i].vertices, ep.X, m.tol), cj = is_vertex(c.blocks[jt.j].vertices, ep.Xj, m.tol);
+  const Vec2 along = rot(m.angle[jt.i]) * (jt.b - jt.a);  // from corner A to B
+  const bool j_inner = (ep.corner == 0) == ((pj - pi).dot(along) > 0);
+  if (ci && !cj ? true : cj && !ci ? false : !j_inner)
+    ep.Xj = m.c0[jt.j] + rot(-m.angle[jt.j]) * (pj - slip * t - m.cen[jt.j]);
+  else
+    ep.X = m.c0[jt.i] + rot(-m.angle[jt.i]) * (pi + slip * t - m.cen[jt.i]);
+  return slip;
+}
+}  // namespace
+
+// The contact state after a move, where the corners it sets closed that were open have just
+// touched: each such corner's no-sliding row holds from where it touched. While it was open it
+// could slide, so the tangential offset of its two material points is that slide, not the drift
+// of the finite update that update_lp takes back for a corner closed all along; taken back in
+// one step, the slides of several corners that touch together ask the blocks for motions that
+// agree only to second order, and the LP is infeasible by a few nanometres (a stack-bond wall's
+// settling half landing on its ground).
+void close_corners(Model& m, const std::vector<char>& closed) {
+  for (size_t e = 0; e < m.ends.size(); ++e)
+    if (closed[e] && !m.ends[e].closed) slip_to_zero(m, e);
+  set_closed(m, closed);
+}
+
 StepRecord configuration_record(const Model& m, int index, double d) {
   StepRecord rec;
   rec.index = index;

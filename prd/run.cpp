@@ -210,10 +210,11 @@ void go_back(Walk& w) {
   w.m.cen = p.cen;
   w.m.angle = p.angle;
   set_closed(w.m, p.closed);
+  for (size_t e = 0; e < w.m.ends.size(); ++e) w.m.ends[e].X = p.X[e], w.m.ends[e].Xj = p.Xj[e];
   w.h_in = w.toward_event(p.d);
   const std::vector<char> closed = closed_after(w.m, p.gap, p.rate, p.h_lp, w.h_in, w.h_ref);
   advance(w.m, Path{p.U, p.dU}, w.h_in);
-  set_closed(w.m, closed);
+  close_corners(w.m, closed);
   w.cur.d = p.d + w.h_in;
   w.cur.index = p.index + 1;
   w.rec = configuration_record(w.m, w.cur.index, w.cur.d);
@@ -263,7 +264,9 @@ void accept(Walk& w, const Solved& sv, RunResult& r) {
   cur.rate = w.rate;
   cur.h_lp = sv.h;
   cur.closed.resize(m.ends.size());
-  for (size_t e = 0; e < m.ends.size(); ++e) cur.closed[e] = m.ends[e].closed;
+  cur.X.resize(m.ends.size());
+  cur.Xj.resize(m.ends.size());
+  for (size_t e = 0; e < m.ends.size(); ++e) cur.closed[e] = m.ends[e].closed, cur.X[e] = m.ends[e].X, cur.Xj[e] = m.ends[e].Xj;
   cur.fn.resize(m.ends.size());
   for (size_t e = 0; e < m.ends.size(); ++e) cur.fn[e] = corner_force(m, e);
   cur.same = sv.opened.empty() && sv.closing.empty();
@@ -350,7 +353,7 @@ void take(Walk& w, const Solved& sv, const Step& st, RunResult& r) {
   std::vector<size_t> shut_now;
   for (size_t e = 0; e < m.ends.size(); ++e)
     if (closed[e] && !m.ends[e].closed) shut_now.push_back(e);
-  set_closed(m, closed);
+  close_corners(m, closed);
   if (!shut_now.empty()) {
     const bool exact = std::isfinite(st.shut.at) && shut_now.size() == 1;
     r.events->push_back(make_event(m, EventKind::close, w.cur.d + st.h, exact ? st.shut.within : st.h, shut_now));
@@ -435,7 +438,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
       const Solved sv = solve_here(w);
       if (sv.status == LpStatus::infeasible) {
         r.status = RunStatus::error;
-        r.message = "d = " + std::to_string(w.cur.d) + " m: the LP is infeasible: the prescribed motion cannot be accommodated without penetration";
+        r.message = "d = " + std::to_string(w.cur.d) + " m: the LP is infeasible: the prescribed motion cannot be accommodated without a corner penetrating or a closed corner sliding";
         break;
       }
       if (event_behind(w, sv)) {
