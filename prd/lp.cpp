@@ -282,10 +282,11 @@ LpStatus solve(Model& m) {
   parm.it_lim = glp_get_num_rows(lp) <= kExactRows ? 1000 + 50 * vars : vars;
   // The exact simplex's statuses are proved in rational arithmetic (and it names no ray).
   // "No feasible point" ends the run as an error, so in double precision it is taken only where
-  // the simplex found it from two starts of GLPK's own (the advanced and the standard basis):
-  // from the previous step's basis, and once also from the advanced basis, GLPK's first phase
-  // has called feasible LPs infeasible (stack-bond walls whose settling half lands on its
-  // ground; an elastic LP over the same rows met every row, and the standard basis solved them).
+  // the simplex found it from two starts of GLPK's own (the advanced and the standard basis),
+  // or from one where the other failed: from the previous step's basis, and once also from the
+  // advanced basis, GLPK's first phase has called feasible LPs infeasible (stack-bond walls
+  // whose settling half lands on its ground; an elastic LP over the same rows met every row,
+  // and the standard basis solved them).
   int no_feasible_starts = 0;
   auto conclusive = [&](int rc, bool rational = false, bool own_start = true) {
     if (rc != 0) return false;
@@ -352,19 +353,23 @@ LpStatus solve(Model& m) {
     m.fresh = false;
     try_simplex(parm, !warm);
   }
-  // Where the simplex failed from the previous basis, or found no feasible point from it, the
-  // same simplex from the advanced basis (stack-bond walls of 100 blocks whose settling half
-  // lands on its ground: it then solved the LP at once, where the textbook ratio test failed
-  // and the exact simplex took 40-60 s). "No feasible point" from one of GLPK's own starts is
-  // checked from the standard basis.
-  if (!done && warm) {
+  // Where the simplex failed from the previous basis (not a stall: that goes on to the textbook
+  // ratio test), or found no feasible point from it, the same simplex from the advanced basis
+  // (stack-bond walls of 100 blocks whose settling half lands on its ground: it then solved the
+  // LP at once, where the textbook ratio test failed and the exact simplex took 40-60 s). "No
+  // feasible point" from one of GLPK's own starts is checked from the standard basis.
+  if (!done && warm && rc != GLP_EITLIM) {
     quiet_adv_basis(lp);
     try_simplex(parm);
   }
+  bool no_feasible = false;  // found by one of GLPK's own starts, and no start found a feasible point
   if (!done && rc == 0 && glp_get_status(lp) == GLP_NOFEAS) {
     glp_std_basis(lp);
     prd::glpk_guarded([&] { return glp_factorize(lp); });  // drops the factors of the basis it stopped at
     try_simplex(parm);
+    // Where the standard basis failed, the advanced basis's finding stands (the exact simplex
+    // next took minutes on a 9-course wall's LP that GLPK had found infeasible twice).
+    if (!done && rc != 0 && no_feasible_starts > 0) done = no_feasible = true;
   }
   if (!done) {
     quiet_adv_basis(lp);
@@ -406,6 +411,7 @@ LpStatus solve(Model& m) {
       why += ", and so did its exact simplex";
     throw std::runtime_error(why);
   }
+  if (no_feasible) return LpStatus::infeasible;
   switch (glp_get_status(lp)) {
     case GLP_OPT: return LpStatus::optimal;
     case GLP_UNBND: return LpStatus::unbounded;

@@ -26,20 +26,24 @@ using namespace prd_detail;
 // on the ground again, corners that slid while open closing together. Before close_corners
 // these runs ended "the LP is infeasible" at 7-67 mm; before the confirmation of "no feasible
 // point", some after GLPK's exact simplex had taken 40-250 s on one LP.
-TEST(PrdContactState, StackBondWallsOnSettlingGroundRunToTheEndOfThePath) {
+TEST(PrdContactState, WallsOnSettlingGroundRunToTheEndOfThePath) {
   struct Variant {
+    WallBond bond;
     int courses, bricks;
-    double split, step;
+    double split, step, settlement;
     bool adaptive;
   };
-  for (const Variant& v : {Variant{3, 6, -1, 0.001, false}, Variant{10, 10, -1, 0.001, false}, Variant{5, 20, -1, 0.001, false},
-                           Variant{12, 8, -1, 0.0005, true}, Variant{12, 8, 1.3, 0.001, true}, Variant{10, 6, -1, 0.001, false}}) {
+  const WallBond stack = WallBond::stack;
+  for (const Variant& v : {Variant{stack, 3, 6, -1, 0.001, 0.001, false}, Variant{stack, 10, 10, -1, 0.001, 0.001, false},
+                           Variant{stack, 5, 20, -1, 0.001, 0.001, false}, Variant{stack, 12, 8, -1, 0.0005, 0.0005, true},
+                           Variant{stack, 12, 8, 1.3, 0.001, 0.001, true}, Variant{stack, 10, 6, -1, 0.001, 0.001, false}}) {
     BrickWall w;
-    w.bond = WallBond::stack;
+    w.bond = v.bond;
     w.courses = v.courses;
     w.bricks = v.bricks;
     w.ground_split = v.split;
-    w.step = w.settlement_step = v.step;
+    w.step = v.step;
+    w.settlement_step = v.settlement;
     const Case c = brick_wall(w);
     PrdSettings s = PrdSettings::from_case(c);
     s.adaptive = v.adaptive;
