@@ -235,7 +235,8 @@ void sync_glpk(Model& m);
 // (static_basis.cpp): true where every free block found rows that carry its loads in compression,
 // so the basis is dual feasible; false, the basis untouched, otherwise.
 bool set_static_basis(Model& m);
-LpStatus solve(Model& m);
+// confirm_infeasible: "no feasible point" only where two of GLPK's own starts find it (lp.cpp).
+LpStatus solve(Model& m, bool confirm_infeasible = true);
 // GLPK's exact (rational) simplex, solve()'s last resort, only up to this many rows: its time
 // grows as the rows to the power 2.2 (the first LP of generated walls from the advanced basis:
 // 1,140 rows 0.5 s, 2,612 rows 2.8 s, 5,676 rows 15.7 s), so that 10,000 rows take about a

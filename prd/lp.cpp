@@ -269,7 +269,7 @@ std::vector<double> unbounded_ray(const Model& m) {
 // and never reports a status GLPK did not prove. An unbounded LP (a collapse) counts as proved
 // only where GLPK's ray is a mechanism of the LP's rows (is_mechanism): a simplex that lost its
 // accuracy can miss the row that bounds it.
-LpStatus solve(Model& m) {
+LpStatus solve(Model& m, bool confirm_infeasible) {
   glp_prob* lp = m.lp.get();
   glp_smcp parm;
   glp_init_smcp(&parm);
@@ -292,7 +292,7 @@ LpStatus solve(Model& m) {
     if (rc != 0) return false;
     const int st = glp_get_status(lp);
     if (st == GLP_UNBND) return rational || is_mechanism(m, unbounded_ray(m));
-    if (st == GLP_NOFEAS) return rational || (own_start && ++no_feasible_starts >= 2);
+    if (st == GLP_NOFEAS) return rational || !confirm_infeasible || (own_start && ++no_feasible_starts >= 2);
     return st == GLP_OPT;
   };
   const auto t0 = cpu_now();
@@ -362,14 +362,19 @@ LpStatus solve(Model& m) {
     quiet_adv_basis(lp);
     try_simplex(parm);
   }
+  // The check is the other of GLPK's own starts: the advanced basis after the standard one.
   bool no_feasible = false;  // found by one of GLPK's own starts, and no start found a feasible point
   if (!done && rc == 0 && glp_get_status(lp) == GLP_NOFEAS) {
-    glp_std_basis(lp);
-    prd::glpk_guarded([&] { return glp_factorize(lp); });  // drops the factors of the basis it stopped at
+    if (started_standard) {
+      quiet_adv_basis(lp);
+    } else {
+      glp_std_basis(lp);
+      prd::glpk_guarded([&] { return glp_factorize(lp); });  // drops the factors of the basis it stopped at
+    }
     try_simplex(parm);
-    // Where the standard basis failed, the advanced basis's finding stands (the exact simplex
-    // next took minutes on a 9-course wall's LP that GLPK had found infeasible twice).
-    if (!done && rc != 0 && no_feasible_starts > 0) done = no_feasible = true;
+    // Where that start failed, the first one's finding stands (the exact simplex next took
+    // minutes on a 9-course wall's LP that GLPK had found infeasible twice).
+    if (!done && rc != 0) done = no_feasible = true;
   }
   if (!done) {
     quiet_adv_basis(lp);
@@ -394,6 +399,8 @@ LpStatus solve(Model& m) {
     // standard basis be the one it started from, glp_std_basis would not drop them.
     prd::glpk_guarded([&] { return glp_factorize(lp); });
     try_simplex(standard);
+    // The advanced basis failed: the standard one's "no feasible point" stands alone.
+    if (!done && rc == 0 && glp_get_status(lp) == GLP_NOFEAS) done = no_feasible = true;
   }
   keep_basis(m);
   m.lp_s += seconds_since(t0);
@@ -498,7 +505,9 @@ Mechanism collapse_mechanism(Model& m, double scale) {
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_DB, -1, 1);
   m.kept.rows.clear();  // its vertex ignores the boxes
   Mechanism out;
-  LpStatus st = solve(m);
+  // GLPK's first "no feasible point" is taken here, unconfirmed: the ray below is solved then,
+  // and its LP is always feasible (zero meets every row), so nothing is lost by a wrong one.
+  LpStatus st = solve(m, false);
   // Where the step's own motion does not fit in the boxes (the settling cathedral: some
   // increment over a unit of the step), the mechanism is the LP's ray itself: the directions
   // in which every row's left-hand side keeps its sign, the LP with every bound at zero, boxed.

@@ -55,7 +55,8 @@ TEST(PrdContactState, WallsOnSettlingGroundRunToTheEndOfThePath) {
     // duals are an equilibrium (strong duality). The moments of the reported resultants are
     // not checked here: a resultant applies its joint's shear at its normal forces' centre,
     // off the sliding row's corner where the two corners stand at different levels across the
-    // joint, and the hanging columns carry hundreds of newtons in shear (the closing note).
+    // joint, and the hanging columns carry hundreds of newtons in shear (prd/README.md, Known
+    // limits).
     for (const StepRecord& st : r.steps) {
       const auto res = testing::equilibrium_residual(c, r, st);
       ASSERT_LT(res.force, 1e-8 * r.total_weight) << what << ", step " << st.index;
