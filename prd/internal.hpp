@@ -106,6 +106,7 @@ struct Model {
   long long load_path_solves = 0;   // LPs solved from the load path (set_static_basis)
 
   Vec2 pos(int b, const Vec2& X) const { return cen[b] + rot(angle[b]) * (X - c0[b]); }
+  Vec2 material(int b, const Vec2& x) const { return c0[b] + rot(-angle[b]) * (x - cen[b]); }  // pos's inverse
   Vec2 normal(const Endpoint& e) const { return rot(angle[joints[e.joint].i]) * joints[e.joint].normal; }
   // Where corner e stands on each of its joint's blocks, and its gap (m, along the normal).
   Vec2 on_i(const Endpoint& e) const { return pos(joints[e.joint].i, e.X); }

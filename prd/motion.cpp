@@ -132,6 +132,19 @@ bool is_vertex(const std::vector<Vec2>& poly, const Vec2& x, double tol) {
     if ((v - x).norm() <= tol) return true;
   return false;
 }
+
+// Whether corner e's copy on block j is the contact point, its copy on block i then a point of
+// i's face: the copy that is a corner of its block (where one face runs on past the other, the
+// other copy is a point of that face, and a slip moves it away from the contact), or of two
+// corners the inner one.
+bool j_copy_touches(const Model& m, const Endpoint& ep) {
+  const Case& c = *m.c;
+  const Interface& jt = m.joints[ep.joint];
+  const bool ci = is_vertex(c.blocks[jt.i].vertices, ep.X, m.tol), cj = is_vertex(c.blocks[jt.j].vertices, ep.Xj, m.tol);
+  if (ci != cj) return cj;
+  const Vec2 along = rot(m.angle[jt.i]) * (jt.b - jt.a);  // from corner A to B
+  return (ep.corner == 0) == ((m.on_j(ep) - m.on_i(ep)).dot(along) > 0);
+}
 }  // namespace
 
 void start_from(Model& m, const PrdStart& start) {
@@ -160,9 +173,7 @@ void start_from(Model& m, const PrdStart& start) {
   // Kept offsets: both blocks' material points of a touching corner move to where a DEM applies
   // its force (dem/README.md, "Manifold"), so that its overlap and elastic shear are the
   // joint's geometry from here on. Along the joint: at the end of the faces' overlap, the copy
-  // that is a corner of its block (where one face runs on past the other, the other copy is a
-  // point of that face, and a slip moves it away from the contact), or of two corners the inner
-  // one. Across it: midway between the two faces at the more compressed of the joint's touching
+  // that is the contact point (j_copy_touches). Across it: midway between the two faces at the more compressed of the joint's touching
   // corners, and both touching corners at that level, so that the joint stays a straight line
   // along block i's face: PRD keeps a joint from slipping by one row at one corner, which holds
   // the whole joint only while its corners lie on such a line (with them a few tenths of a mm
@@ -171,7 +182,7 @@ void start_from(Model& m, const PrdStart& start) {
   // gap is a real one and stays.
   for (size_t k = 0; k < m.joints.size(); ++k) {
     const Interface& jt = m.joints[k];
-    const Vec2 n = m.normal(m.ends[2 * k]), along = rot(m.angle[jt.i]) * (jt.b - jt.a);  // along: from corner A to B
+    const Vec2 n = m.normal(m.ends[2 * k]);
     Vec2 at[2];
     int deepest = -1;
     for (int corner = 0; corner < 2; ++corner) {
@@ -179,9 +190,7 @@ void start_from(Model& m, const PrdStart& start) {
       const Endpoint& ep = m.ends[e];
       if (!ep.closed) continue;
       const Vec2 pi = m.on_i(ep), pj = m.on_j(ep);
-      const bool ci = is_vertex(c.blocks[jt.i].vertices, ep.X, m.tol), cj = is_vertex(c.blocks[jt.j].vertices, ep.X, m.tol);
-      const bool j_inner = (corner == 0) == ((pj - pi).dot(along) > 0);
-      const Vec2 p = ci && !cj ? pi : cj && !ci ? pj : j_inner ? pj : pi;
+      const Vec2 p = j_copy_touches(m, ep) ? pj : pi;
       at[corner] = p + (0.5 * (pi + pj) - p).dot(n) * n;
       if (deepest < 0 || gap[e] < gap[2 * k + deepest]) deepest = corner;
     }
@@ -189,8 +198,8 @@ void start_from(Model& m, const PrdStart& start) {
       Endpoint& ep = m.ends[2 * k + corner];
       if (!ep.closed) continue;
       const Vec2 x = at[corner] + (at[deepest] - at[corner]).dot(n) * n;
-      ep.X = m.c0[jt.i] + rot(-m.angle[jt.i]) * (x - m.cen[jt.i]);
-      ep.Xj = m.c0[jt.j] + rot(-m.angle[jt.j]) * (x - m.cen[jt.j]);
+      ep.X = m.material(jt.i, x);
+      ep.Xj = m.material(jt.j, x);
     }
   }
 }
@@ -221,38 +230,27 @@ void set_closed(Model& m, const std::vector<char>& closed) {
   for (size_t e = 0; e < m.ends.size(); ++e) m.ends[e].closed = closed[e];
 }
 
-namespace {
-// Corner e's material points made to agree along the joint, where they are now: the copy that is
-// not the contact point (the point of the other block's face, as in start_from) moves along the
-// face to the contact point. The gap across the joint is left as it is, for the no-penetration
-// row to take back. Returns the tangential offset removed, m.
-double slip_to_zero(Model& m, size_t e) {
-  const Case& c = *m.c;
-  Endpoint& ep = m.ends[e];
-  const Interface& jt = m.joints[ep.joint];
-  const Vec2 pi = m.on_i(ep), pj = m.on_j(ep), t = perp(m.normal(ep));
-  const double slip = (pj - pi).dot(t);
-  const bool ci = is_vertex(c.blocks[jt.i].vertices, ep.X, m.tol), cj = is_vertex(c.blocks[jt.j].vertices, ep.Xj, m.tol);
-  const Vec2 along = rot(m.angle[jt.i]) * (jt.b - jt.a);  // from corner A to B
-  const bool j_inner = (ep.corner == 0) == ((pj - pi).dot(along) > 0);
-  if (ci && !cj ? true : cj && !ci ? false : !j_inner)
-    ep.Xj = m.c0[jt.j] + rot(-m.angle[jt.j]) * (pj - slip * t - m.cen[jt.j]);
-  else
-    ep.X = m.c0[jt.i] + rot(-m.angle[jt.i]) * (pi + slip * t - m.cen[jt.i]);
-  return slip;
-}
-}  // namespace
-
 // The contact state after a move, where the corners it sets closed that were open have just
 // touched: each such corner's no-sliding row holds from where it touched. While it was open it
 // could slide, so the tangential offset of its two material points is that slide, not the drift
 // of the finite update that update_lp takes back for a corner closed all along; taken back in
 // one step, the slides of several corners that touch together ask the blocks for motions that
 // agree only to second order, and the LP is infeasible by a few nanometres (a stack-bond wall's
-// settling half landing on its ground).
+// settling half landing on its ground). So the copy that is not the contact point (a point of
+// the other block's face, j_copy_touches) moves along the face to the contact point; the gap
+// across the joint is left for the no-penetration row to take back.
 void close_corners(Model& m, const std::vector<char>& closed) {
-  for (size_t e = 0; e < m.ends.size(); ++e)
-    if (closed[e] && !m.ends[e].closed) slip_to_zero(m, e);
+  for (size_t e = 0; e < m.ends.size(); ++e) {
+    Endpoint& ep = m.ends[e];
+    if (!closed[e] || ep.closed) continue;
+    const Interface& jt = m.joints[ep.joint];
+    const Vec2 pi = m.on_i(ep), pj = m.on_j(ep), t = perp(m.normal(ep));
+    const double slip = (pj - pi).dot(t);
+    if (j_copy_touches(m, ep))
+      ep.X = m.material(jt.i, pi + slip * t);
+    else
+      ep.Xj = m.material(jt.j, pj - slip * t);
+  }
   set_closed(m, closed);
 }
 
