@@ -437,6 +437,30 @@ double corner_slack(const Model& m, size_t e) {
   return row_prim(m, row) - m.row_lb[row - 1];
 }
 
+namespace {
+// Where a joint's resultant is reported: the point of its line of action nearest to c, the
+// normal forces' centre (or, without normal force, the corner that carries the shear). The
+// corner forces act at the corners' own points; the shear at its sliding row's corner, which
+// stands off the line through c along the joint by the gap or overlap across it where the
+// corners stand at different levels (a block that landed again). Placed at c, the resultant's
+// moment about a block was off by the shear times that offset (up to 1.2 N m on hanging
+// stack-bond walls). On the line of action the moment is exact, and where the normal forces
+// push (N > 0) the nearest point stays within the joint (|M| / |R| <= |shear| |p - c| / |R| <=
+// |p - c|), also where the normal force is small against the shear: a point kept on the joint's
+// line would go off the joint there.
+Vec2 resultant_point(const Vec2& c, const Vec2& n, const Vec2 at[2], const double fn[2], const double ft[2]) {
+  Vec2 R(0, 0);
+  double moment = 0;  // about c
+  for (int corner = 0; corner < 2; ++corner) {
+    const Vec2 f = fn[corner] * n + ft[corner] * perp(n);
+    R += f;
+    moment += cross(at[corner] - c, f);
+  }
+  // (x - c) x R = moment, with x - c along perp(R): cross(perp(R), R) = -|R|^2.
+  return c - (moment / R.squaredNorm()) * perp(R);
+}
+}  // namespace
+
 // Forces from the row duals: joint resultants and support reactions, on the current geometry.
 void read_forces(const Model& m, StepRecord& rec) {
   const Case& c = *m.c;
@@ -452,6 +476,8 @@ void read_forces(const Model& m, StepRecord& rec) {
     double N = 0, T = 0;
     Vec2 moment_point(0, 0);
     Vec2 n(0, 0);
+    Vec2 at[2];
+    double fn_at[2] = {0, 0}, ft_at[2] = {0, 0};
     for (int corner = 0; corner < 2; ++corner) {
       const size_t e = 2 * k + corner;
       const Endpoint& ep = m.ends[e];
@@ -459,6 +485,7 @@ void read_forces(const Model& m, StepRecord& rec) {
       const double ft = m.sliding_row(e) ? row_dual(m, 2 * static_cast<int>(e) + 2) * m.force_unit : 0.0;
       n = m.normal(ep);
       const Vec2 p = 0.5 * (m.on_i(ep) + m.on_j(ep));
+      at[corner] = p, fn_at[corner] = fn, ft_at[corner] = ft;
       N += fn;
       T += ft;
       moment_point += fn * p;
@@ -480,7 +507,8 @@ void read_forces(const Model& m, StepRecord& rec) {
       jf.normal = N;
       jf.shear = T;
       jf.n = n;
-      jf.point = N > 0 ? Vec2(moment_point / N) : Vec2(0.5 * (m.pos(jt.i, jt.a) + m.pos(jt.i, jt.b)));
+      const Vec2 c = N > 0 ? Vec2(moment_point / N) : at[ft_at[0] != 0 ? 0 : 1];
+      jf.point = resultant_point(c, n, at, fn_at, ft_at);  // N > 0 or T != 0: R is not zero
       rec.forces.push_back(jf);
     }
   }
