@@ -185,7 +185,8 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
   std::map<std::pair<int, int>, int> joint_of;
   for (size_t k = 0; k < joints.size(); ++k) joint_of.emplace(std::make_pair(joints[k].i, joints[k].j), static_cast<int>(k));
   struct Acc {
-    double n = 0, s = 0, mom = 0;
+    double n = 0, s = 0;
+    double moment = 0;  // of the contact forces about the model's frame's origin
     Vec2 np{0, 0};
   };
   std::vector<Acc> acc(joints.size());
@@ -221,6 +222,7 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
       a.n += fn;
       a.s += fj.dot(t);
       a.np += fn * ps.point;
+      a.moment += cross(ps.point, fj);
     }
   for (size_t k = 0; k < joints.size(); ++k) {
     const Interface& J = joints[k];
@@ -229,9 +231,15 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
       f.joint = static_cast<int>(k);
       f.normal = acc[k].n;
       f.shear = acc[k].s;
-      f.point = acc[k].np / acc[k].n + m.origin;
       Vec2 t;
       joint_frame(J, f.n, t);
+      // On the resultant's line of action (on_line_of_action), nearest to the normal forces'
+      // centre: the contact points stand at different levels across the joint (overlaps, a
+      // hinge's turn), and the shear placed at that centre left the resultant's moment off by
+      // the shear times that.
+      const Vec2 c = acc[k].np / acc[k].n;
+      const Vec2 R = f.normal * f.n + f.shear * t;
+      f.point = on_line_of_action(c, R, acc[k].moment - cross(c, R)) + m.origin;
       r.forces.push_back(f);
     }
     // A corner is open when both blocks' copies of it stand off the other block's face

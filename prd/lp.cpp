@@ -437,30 +437,6 @@ double corner_slack(const Model& m, size_t e) {
   return row_prim(m, row) - m.row_lb[row - 1];
 }
 
-namespace {
-// Where a joint's resultant is reported: the point of its line of action nearest to c, the
-// normal forces' centre (or, without normal force, the corner that carries the shear). The
-// corner forces act at the corners' own points; the shear at its sliding row's corner, which
-// stands off the line through c along the joint by the gap or overlap across it where the
-// corners stand at different levels (a block that landed again). Placed at c, the resultant's
-// moment about a block was off by the shear times that offset (up to 1.2 N m on hanging
-// stack-bond walls). On the line of action the moment is exact, and where the normal forces
-// push (N > 0) the nearest point stays within the joint (|M| / |R| <= |shear| |p - c| / |R| <=
-// |p - c|), also where the normal force is small against the shear: a point kept on the joint's
-// line would go off the joint there.
-Vec2 resultant_point(const Vec2& c, const Vec2& n, const Vec2 at[2], const double fn[2], const double ft[2]) {
-  Vec2 R(0, 0);
-  double moment = 0;  // about c
-  for (int corner = 0; corner < 2; ++corner) {
-    const Vec2 f = fn[corner] * n + ft[corner] * perp(n);
-    R += f;
-    moment += cross(at[corner] - c, f);
-  }
-  // (x - c) x R = moment, with x - c along perp(R): cross(perp(R), R) = -|R|^2.
-  return c - (moment / R.squaredNorm()) * perp(R);
-}
-}  // namespace
-
 // Forces from the row duals: joint resultants and support reactions, on the current geometry.
 void read_forces(const Model& m, StepRecord& rec) {
   const Case& c = *m.c;
@@ -507,8 +483,16 @@ void read_forces(const Model& m, StepRecord& rec) {
       jf.normal = N;
       jf.shear = T;
       jf.n = n;
+      // The resultant on its line of action (on_line_of_action), nearest to the normal forces'
+      // centre, or without normal force to the corner that carries the shear. The shear acts at
+      // its no-sliding row's corner, which stands off the line through that centre by the gap
+      // or overlap across the joint where the corners are at different levels (a block that
+      // landed again): placed at the centre, the resultant's moment about a block was off by
+      // the shear times that offset (up to 1.2 N m on hanging stack-bond walls).
       const Vec2 c = N > 0 ? Vec2(moment_point / N) : at[ft_at[0] != 0 ? 0 : 1];
-      jf.point = resultant_point(c, n, at, fn_at, ft_at);  // N > 0 or T != 0: R is not zero
+      double moment = 0;
+      for (int corner = 0; corner < 2; ++corner) moment += cross(at[corner] - c, fn_at[corner] * n + ft_at[corner] * perp(n));
+      jf.point = on_line_of_action(c, N * n + T * perp(n), moment);  // N > 0 or T != 0: R is not zero
       rec.forces.push_back(jf);
     }
   }
