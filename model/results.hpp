@@ -31,7 +31,7 @@ struct JointForce {
   int joint = -1;
   double normal = 0.0;  // N, compressive resultant (>= 0)
   double shear = 0.0;   // N, along the joint tangent
-  Vec2 point{0, 0};     // application point of the resultant, current configuration
+  Vec2 point{0, 0};     // m: on the resultant's line of action, nearest its normal forces' centre (on_line_of_action), current configuration
   Vec2 n{0, 0};         // unit normal of the joint (out of block i), current configuration
 };
 
