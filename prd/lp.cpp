@@ -452,8 +452,8 @@ void read_forces(const Model& m, StepRecord& rec) {
     double N = 0, T = 0;
     Vec2 moment_point(0, 0);
     Vec2 n(0, 0);
-    Vec2 at[2];
-    double fn_at[2] = {0, 0}, ft_at[2] = {0, 0};
+    Vec2 at[2], f_at[2];  // each corner's point and force on block j
+    int shear_corner = 0;
     for (int corner = 0; corner < 2; ++corner) {
       const size_t e = 2 * k + corner;
       const Endpoint& ep = m.ends[e];
@@ -461,11 +461,12 @@ void read_forces(const Model& m, StepRecord& rec) {
       const double ft = m.sliding_row(e) ? row_dual(m, 2 * static_cast<int>(e) + 2) * m.force_unit : 0.0;
       n = m.normal(ep);
       const Vec2 p = 0.5 * (m.on_i(ep) + m.on_j(ep));
-      at[corner] = p, fn_at[corner] = fn, ft_at[corner] = ft;
       N += fn;
       T += ft;
       moment_point += fn * p;
       const Vec2 fk = fn * n + ft * perp(n);  // on block j
+      at[corner] = p, f_at[corner] = fk;
+      if (ft != 0) shear_corner = corner;
       // Reactions: the force the structure receives from the support, and its moment.
       for (int side = 0; side < 2; ++side) {
         const int b = side == 0 ? jt.i : jt.j;
@@ -489,10 +490,10 @@ void read_forces(const Model& m, StepRecord& rec) {
       // or overlap across the joint where the corners are at different levels (a block that
       // landed again): placed at the centre, the resultant's moment about a block was off by
       // the shear times that offset (up to 1.2 N m on hanging stack-bond walls).
-      const Vec2 c = N > 0 ? Vec2(moment_point / N) : at[ft_at[0] != 0 ? 0 : 1];
+      const Vec2 centre = N > 0 ? Vec2(moment_point / N) : at[shear_corner];
       double moment = 0;
-      for (int corner = 0; corner < 2; ++corner) moment += cross(at[corner] - c, fn_at[corner] * n + ft_at[corner] * perp(n));
-      jf.point = on_line_of_action(c, N * n + T * perp(n), moment);  // N > 0 or T != 0: R is not zero
+      for (int corner = 0; corner < 2; ++corner) moment += cross(at[corner] - centre, f_at[corner]);
+      jf.point = on_line_of_action(centre, f_at[0] + f_at[1], moment);  // N > 0 or T != 0: R is not zero
       rec.forces.push_back(jf);
     }
   }

@@ -53,10 +53,11 @@ TEST(PrdContactState, WallsOnSettlingGroundRunToTheEndOfThePath) {
     EXPECT_NEAR(r.capacity, w.max_steps * v.step, 1e-9) << what;
     // Every accepted configuration has forces and moments in equilibrium with the weights, and
     // its LP's duals are an equilibrium (strong duality). The moments are the hard part here:
-    // the hanging columns carry hundreds of newtons of shear across joints whose two corners
-    // stand at different levels after a brick landed (some with no normal force at all), and
-    // a resultant that put that shear at its normal forces' centre, or at the joint's middle,
-    // left the moments off by up to 1.2 N m (read_forces).
+    // the hanging columns carry shear across joints whose two corners stand microns apart
+    // across the joint after a brick landed, some with no normal force at all (108 kN of shear
+    // on one of the 3 x 6 wall's ground joints), and a resultant that put that shear at its
+    // normal forces' centre, or at the joint's middle, left the moments off by up to 1.2 N m
+    // (read_forces).
     for (const StepRecord& st : r.steps) {
       const auto res = testing::equilibrium_residual(c, r, st);
       ASSERT_LT(res.force, 1e-8 * r.total_weight) << what << ", step " << st.index;
