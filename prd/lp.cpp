@@ -535,8 +535,10 @@ Mechanism collapse_mechanism(Model& m, double scale) {
   if (st == LpStatus::optimal) {
     // Open: at the end of the boxed step; along the ray, where it opens or is open already.
     std::vector<double> s(m.ends.size());
-    if (!ray) s = slacks(m, scale);
-    for (size_t e = 0; ray && e < m.ends.size(); ++e) s[e] = std::max(row_prim(m, 2 * static_cast<int>(e) + 1) * scale, m.gap(m.ends[e]) - m.tol);
+    if (ray)
+      for (size_t e = 0; e < m.ends.size(); ++e) s[e] = std::max(row_prim(m, 2 * static_cast<int>(e) + 1) * scale, m.gap(m.ends[e]) - m.tol);
+    else
+      s = slacks(m, scale);
     for (size_t e = 0; e < m.ends.size(); ++e)
       if (s[e] > 1e-6 * scale) out.open_corners.push_back({m.ends[e].joint, m.ends[e].corner});
     for (size_t b = 0; b < m.col.size(); ++b) {

@@ -171,15 +171,15 @@ void start_from(Model& m, const PrdStart& start) {
   }
   if (start.offsets == StartOffsets::take_back) return;
   // Kept offsets: both blocks' material points of a touching corner move to where a DEM applies
-  // its force (dem/README.md, "Manifold"), so that its overlap and elastic shear are the
-  // joint's geometry from here on. Along the joint: at the end of the faces' overlap, the copy
-  // that is the contact point (j_copy_touches). Across it: midway between the two faces at the more compressed of the joint's touching
-  // corners, and both touching corners at that level, so that the joint stays a straight line
-  // along block i's face: PRD keeps a joint from slipping by one row at one corner, which holds
-  // the whole joint only while its corners lie on such a line (with them a few tenths of a mm
-  // apart across it, a block rocking about one corner would have to slip there; a tilting block
-  // on joints ten times softer then stood 1.4 mrad past the DEM's toppling). An open corner's
-  // gap is a real one and stays.
+  // its force (dem/README.md, "Manifold"), so that its overlap and elastic shear are the joint's
+  // geometry from here on. Along the joint: at the end of the faces' overlap, the copy that is
+  // the contact point (j_copy_touches). Across it: midway between the two faces at the more
+  // compressed of the joint's touching corners, and both touching corners at that level, so that
+  // the joint stays a straight line along block i's face: PRD keeps a joint from slipping by one
+  // row at one corner, which holds the whole joint only while its corners lie on such a line
+  // (with them a few tenths of a mm apart across it, a block rocking about one corner would have
+  // to slip there; a tilting block on joints ten times softer then stood 1.4 mrad past the DEM's
+  // toppling). An open corner's gap is a real one and stays.
   for (size_t k = 0; k < m.joints.size(); ++k) {
     const Interface& jt = m.joints[k];
     const Vec2 n = m.normal(m.ends[2 * k]);
