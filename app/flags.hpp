@@ -36,7 +36,8 @@ class CaseFlags {
     std::string name, key;
     std::optional<double> number;
     std::optional<long long> integer;
-    bool on = false;
+    bool on = false;  // a boolean option: `--name` is true, `--name=false` false
+    CLI::Option* given = nullptr;  // the boolean's flag, whose count says whether it was given
     std::optional<std::string> text;
     std::vector<std::string> texts;
   };

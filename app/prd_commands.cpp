@@ -75,7 +75,8 @@ int print_first_step(const Case& c, double h, bool as_json) {
     std::cout << printable(c.name) << ": unbounded: the structure collapses at d = 0\n";
     return kExitDone;
   }
-  std::cout << printable(c.name) << ": a first step of " << h << " m changes the loads' potential energy by " << f.energy_change << " J; it opens:\n";
+  std::cout << printable(c.name) << ": a first step of " << h << " " << path_unit(c) << " changes the loads' potential energy by "
+            << f.energy_change << " J; it opens " << (f.opening.empty() ? "no corner\n" : "these corners:\n");
   for (const FirstStep::Opening& o : f.opening) std::cout << "  " << printable(o.corner) << "  " << o.opening * 1e3 << " mm\n";
   return kExitDone;
 }
@@ -113,6 +114,13 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     settings->add(sub, OptionCommand::prd);
     sub->add_option("--friction-angle", *friction,
                     "Report the first step and joint where the friction demand exceeds this angle, deg (implies --sliding)")
+        ->check(CLI::Validator(
+            [](std::string& v) {
+              // CLI11's range lets NaN through (every comparison with it is false).
+              const double x = std::strtod(v.c_str(), nullptr);
+              return std::isfinite(x) ? std::string() : "must be a finite number, not \"" + v + "\"";
+            },
+            ""))
         ->check(CLI::Range(0.0, 90.0));
     auto from = std::make_shared<std::string>();
     auto from_d = std::make_shared<double>(NAN);
@@ -170,17 +178,20 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     sub->add_option("case", *path, "Case file (JSON, masonry-case/1)")->required();
     sub->add_flag("--json", *as_json, "Print one JSON object (stable, forces, reactions)");
     settings->add(sub, &PrdOptions::contact_tolerance);
-    auto step = std::make_shared<double>(0.0);
+    auto step = std::make_shared<std::optional<double>>();
     sub->add_option("--step", *step,
-                    "Instead: the run's first LP, the mechanism the support motion over this step (m) drives from the start, the "
-                    "potential energy it releases and the corners it opens")
-        ->check(CLI::PositiveNumber);
+                    "Instead: the run's first LP, the mechanism the support motion over this step (m, or rad where the supports only "
+                    "turn) drives from the start, the potential energy it releases and the corners it opens (checked as the case's "
+                    "motion.step)");
     // With --step, the corners the run holds closed (the case's and these) are held in its first LP.
     settings->add(sub, &PrdOptions::hold_closed)->needs("--step");
     out.push_back({sub, [=]() {
-                     const Case c = settings->apply(load_case(*path));
-                     warn_lp_cost(c, "check", 1.2e-7, !(*step > 0));
-                     if (*step > 0) return print_first_step(c, *step, *as_json);
+                     Case c = settings->apply(load_case(*path));
+                     // The step as the case's own: one range and one refusal (a NaN or a step
+                     // outside the scene's range named like a case file's).
+                     if (*step) c = with_option(c, "motion.step", **step);
+                     warn_lp_cost(c, "check", 1.2e-7, !*step);
+                     if (*step) return print_first_step(c, c.motion.step, *as_json);
                      const PrdCheck k = prd_check(c, c.prd.contact_tolerance);
                      RunResult r;
                      r.method = method_name(Method::prd);

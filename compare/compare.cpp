@@ -134,6 +134,7 @@ std::vector<const StepRecord*> stable_records(const RunResult& r) {
   const double eps = 1e-9 * std::max(1.0, std::abs(cap));
   for (const StepRecord& s : r.steps) {
     if (!std::isfinite(s.d)) continue;
+    if (s.settled && !*s.settled) continue;  // a DEM's failed state, even at d = 0: no equilibrium
     if (std::isfinite(cap) && s.d > cap + eps) continue;
     if (!out.empty() && s.d < out.back()->d) continue;  // records run forward in d
     out.push_back(&s);
@@ -211,7 +212,7 @@ std::optional<Parting> hinges_part(const Case& c, const RunResult& a, const RunR
 
 double settled_gap(const RunResult& r) {
   double g = 0.0;
-  if (!r.steps.empty())
+  if (!r.steps.empty() && r.steps.front().settled.value_or(true))
     for (const OpenCorner& o : r.steps.front().open_corners)
       if (std::isfinite(o.gap)) g = std::max(g, o.gap);
   return g;
@@ -415,9 +416,12 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
     return false;
   });
   k.hinges_skipped = missing(a, b, k, "joints", [](const RunResult& r) { return !r.joints.empty(); });
+  // A run with no equilibrium at all (it does not stand as drawn) has nothing to compare.
+  const std::string stands = missing(a, b, k, "equilibrium: it does not stand as drawn", [](const RunResult& r) { return !stable_records(r).empty(); });
+  if (!stands.empty()) k.thrust_skipped = k.hinges_skipped = stands;
   // The mechanism agreement moves the joints' corners with the blocks' poses and weights each
   // joint by the force it carries: without forces every weight is 0 and no agreement exists.
-  k.mechanism_skipped = missing(a, b, k, "joints, poses and forces at every record", [&](const RunResult& r) {
+  k.mechanism_skipped = !stands.empty() ? stands : missing(a, b, k, "joints, poses and forces at every record", [&](const RunResult& r) {
     if (r.joints.empty()) return false;
     for (const StepRecord* s : stable_records(r))
       if (s->poses.size() != c.blocks.size() || s->forces.empty()) return false;

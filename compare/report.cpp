@@ -360,6 +360,10 @@ std::vector<Item> settled_cracks(const Report& r) {
   std::vector<Item> items;
   for (const ReportRun& rr : r.runs) {
     std::string list;
+    if (rr.run && !rr.run->steps.empty() && !rr.run->steps.front().settled.value_or(true)) {
+      items.push_back({{rr.label + ": none: it did not settle at d = 0 (it does not stand as drawn)"}, {}});
+      continue;
+    }
     if (rr.run && !rr.run->steps.empty())
       for (int j : rr.run->steps.front().cracked) {
         if (j < 0 || j >= static_cast<int>(rr.run->joints.size())) continue;

@@ -207,6 +207,9 @@ bool settle(Run& u) {
     else if (!u.r.collapsed)
       msg << "the initial configuration neither settled nor ran away within the hold cap (" << u.s.hold_time
           << " s) and three more, its motion still dying out: no capacity; a longer dem.hold_time may settle it";
+    else
+      msg << "the initial configuration does not stand: it collapsed while settling under gravity at d = 0, before any support "
+             "motion: no capacity";
     u.r.message = msg.str();
     return false;
   }

@@ -156,7 +156,21 @@ struct Reader : FieldReader<CaseError, json> {
 void check_scales(const Case& c, const Reader& r) {
   const double L = scene_size(c);
   if (!(std::isfinite(L) && L > 0)) r.fail("blocks", "the scene has no finite size");
-  check_scene_options(c.motion, L, r.source);
+  // Where every moving support only turns, d and its step are angles: what must stand against the
+  // scene is the arc a support's farthest point travels per step, not the step itself.
+  if (path_unit(c) == "rad") {
+    double turn = 0;
+    for (const SupportMotion& m : c.motion.supports) turn = std::max(turn, std::abs(m.rotation));
+    const double arc = c.motion.step * turn;  // rad per step: the arc over the scene size
+    if (c.motion.step > 0 && !(arc >= kFinestFraction && arc <= 1)) {
+      std::ostringstream m;
+      m << "field 'step' = " << c.motion.step << " rad turns a support by " << arc << " rad per step, outside [1e-9, 1] rad (its farthest point "
+        << "moves 1e-9 to 1 times the scene size, " << L << " m)";
+      r.fail("motion", m.str());
+    }
+  } else {
+    check_scene_options(c.motion, L, r.source);
+  }
   check_scene_options(c.prd, L, r.source);
   check_scene_options(c.dem, L, r.source);
   // The weight and what the supports travel over the run: finite, so energies and ratios are.

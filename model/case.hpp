@@ -134,8 +134,9 @@ struct DemOptions {
   std::optional<double> open_gap;
   // Confirm a located collapse by the short move from the bracket's final equilibrium
   // (dem/README.md, "Protocol", stage 4); a failure it does not reproduce becomes an equilibrium
-  // and the run goes on. Off by default: near a limit point it lets the capacity creep past it.
-  bool confirm_collapse = false;
+  // and the run goes on. On by default: a failure only a long move produces is that move's
+  // dynamics, not the structure's (a slender block toppled 13% early without it).
+  bool confirm_collapse = true;
   HoldDamping hold_damping = HoldDamping::local;
 };
 

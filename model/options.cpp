@@ -23,9 +23,6 @@ constexpr double kMaxModulus = 1e13;         // Pa (diamond: 1.2e12)
 constexpr double kMaxJointStiffness = 1e18;  // Pa/m
 constexpr double kMaxModelTime = 1e4;        // s of DEM model time
 constexpr double kMaxSteps = 1e8;            // steps of one run: 1e8 LPs or DEM increments is days of work
-// Of the scene size: the finest length a case may set; below it a length is lost in the
-// round-off of the coordinates.
-constexpr double kFinestFraction = 1e-9;
 
 // A joint corner as results name it: "BLOCK/BLOCK:A" or ":B".
 bool is_joint_corner(const std::string& s) {
@@ -222,11 +219,12 @@ const Option<DemOptions> kDemRows[] = {
      .flag = "--open-gap"},
     {.name = "confirm_collapse",
      .member = &DemOptions::confirm_collapse,
+     .note = "--confirm-collapse=false turns it off",
      .help = "Confirm a located collapse by the short move from the bracket's last equilibrium; a failure it does not "
              "reproduce becomes an equilibrium and the run goes on (dem/README.md, \"Protocol\", stage 4)",
      .flag = "--confirm-collapse",
      .in_case = Shown::when_set,
-     .in_results = Shown::when_set},
+     .in_results = Shown::always},
     {.name = "hold_damping",
      .member = &DemOptions::hold_damping,
      .words = kHoldDampingNames,

@@ -95,6 +95,23 @@ TEST(CommandLine, QuietSaysNothingButWhyItFailed) {
   EXPECT_NE(bad.err.find("field 'step'"), std::string::npos) << bad.err;
 }
 
+// `check --step` takes the step as the case's motion.step, with its range and refusal: NaN ran
+// the other analysis with exit code 0, 1e300 was accepted, 0 printed DBL_MAX's 309 digits. And
+// `prd --friction-angle nan` is refused, where CLI11's range let it through.
+TEST(CommandLine, CheckStepAndFrictionAngleAreCheckedLikeTheCase) {
+  Scratch dir("cli-check-step");
+  for (const char* step : {"nan", "0", "1e300", "5"}) {
+    const Ran r = run("check " + kTilt + " --step " + step, dir);
+    EXPECT_EQ(r.rc, 2) << step;
+    EXPECT_NE(r.err.find("field 'step'"), std::string::npos) << step << " | " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  }
+  EXPECT_EQ(run("check " + kTilt + " --step 0.01", dir).rc, 0);
+  const Ran f = run("prd " + kTilt + " --out " + (dir.path / "o").string() + " --friction-angle nan", dir);
+  EXPECT_EQ(f.rc, 2);
+  EXPECT_NE(f.err.find("--friction-angle: must be a finite number"), std::string::npos) << f.err;
+}
+
 // A case whose supports do not move is refused by the capacity commands (exit 2, one line),
 // where `masonry prd` ran 1000 steps to "max_steps, capacity 1 m" with exit code 0.
 TEST(CommandLine, SupportsThatDoNotMoveAreRefused) {

@@ -210,6 +210,31 @@ TEST(DemBracket, AFailureThatAShortMoveDoesNotReproduceIsNotTheCapacity) {
   EXPECT_LT(plain.capacity, 0.5 * topple);
 }
 
+// At the defaults too: a slender block (b/h = 0.02) on a slab tilting 1 degree per increment.
+// The first whole increment's move, from rest at 0, throws it over at 1 degree, while it stands
+// to atan(b/h) = 1.146 degrees when tilted gently: every bisection trial below 1 degree settles,
+// and without stage 4 the bracket closes on that move's failure, 13% early. With it (the
+// default), the short move from the bracket's last equilibrium does not reproduce the failure,
+// and the run topples the block at atan(b/h), within the bracket and the equilibrium
+// tolerance's resolution of the tipping point.
+TEST(DemBracket, ASlenderBlockTopplesAtItsLimitAtTheDefaults) {
+  const double b = 0.02, h = 1.0;
+  const double topple = std::atan(b / h);
+  Case c = test::tilt_case(b, h, 35);
+  c.dem.kn.reset();  // the default joints, E / h_block: the slab's 1e8 Pa/m would let the block
+  c.dem.ks.reset();  // lean over elastically (rocking stiffness kn b^3 / 12 below W h / 2)
+  c.motion.max_steps = 3;
+  const DemSettings s = DemSettings::from_case(c);
+  ASSERT_TRUE(s.confirm_collapse);
+  const RunResult r = dem_run(c, s);
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
+  EXPECT_FALSE(r.unconfirmed_failures.empty());
+  EXPECT_NEAR(r.capacity, topple, c.dem.bracket_fraction * c.motion.step + 2 * tipping_resolution(b, h));
+  DemSettings plain = s;
+  plain.confirm_collapse = false;
+  EXPECT_LT(dem_run(c, plain).capacity, 0.95 * topple);
+}
+
 // A limit point is a located collapse. A wide block (b/h = 2) on a tilting slab slides when the
 // tilt reaches its friction angle, 20.1 degrees, and no sooner (closed form: tan theta =
 // tan phi). The slab turns 0.2 degrees per increment, holds are capped at 0.5 s and the

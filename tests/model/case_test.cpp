@@ -283,12 +283,13 @@ TEST(WithOption, ChangesOneSettingAndKeepsTheRest) {
   EXPECT_DOUBLE_EQ(masonry::with_option(c, "motion.step", 0.004).motion.step, 0.004);
   // The DEM's hinge threshold and stage 4 are options too (flags map onto them), and survive
   // the file format.
-  const masonry::Case g = masonry::with_option(masonry::with_option(c, "dem.open_gap", 0.002), "dem.confirm_collapse", true);
+  const masonry::Case g = masonry::with_option(masonry::with_option(c, "dem.open_gap", 0.002), "dem.confirm_collapse", false);
   const masonry::Case back = masonry::parse_case(masonry::case_to_json(g), "back.json");
   ASSERT_TRUE(back.dem.open_gap.has_value());
   EXPECT_DOUBLE_EQ(*back.dem.open_gap, 0.002);
-  EXPECT_TRUE(back.dem.confirm_collapse);
-  EXPECT_FALSE(c.dem.open_gap.has_value() || c.dem.confirm_collapse);
+  EXPECT_FALSE(back.dem.confirm_collapse);
+  EXPECT_FALSE(c.dem.open_gap.has_value());
+  EXPECT_TRUE(c.dem.confirm_collapse);
   // How holds come to rest: a word, local by default.
   EXPECT_EQ(c.dem.hold_damping, masonry::HoldDamping::local);
   const masonry::Case k = masonry::with_option(c, "dem.hold_damping", "kinetic");
@@ -444,6 +445,24 @@ TEST(CaseErrors, MaxStepsBeyondItsRangeSaysSo) {
   }
   expect_error(with_blocks(std::string(kGround) + kBlock, R"(, "motion": {"max_steps": 2.5})"), {"field 'max_steps' must be a whole number"});
   EXPECT_EQ(error_of(with_blocks(std::string(kGround) + kBlock, R"(, "motion": {"max_steps": 100000000})")), "");
+}
+
+// Where every moving support only turns, the step is an angle: it stands against the scene as
+// the arc it turns the supports through, so a tilting block drawn a hundred times smaller takes
+// the same 1-degree step (it was refused as a step of 0.017 m in a scene of 0.012 m), and a
+// step that turns a support by more than a radian, or by less than 1e-9 of one, is refused.
+TEST(CaseErrors, AnAngularStepStandsAgainstTheSceneAsAnArc) {
+  const std::string small = R"({"id": "ground", "vertices": [[-0.02, -0.005], [0.02, -0.005], [0.02, 0], [-0.02, 0]], "support": true},
+      {"id": "b", "vertices": [[0, 0], [0.005, 0], [0.005, 0.01], [0, 0.01]], "density": 1})";
+  const auto turning = [&](const std::string& step) {
+    return with_blocks(small, R"(, "motion": {"step": )" + step + R"(, "max_steps": 10, "supports": [{"block": "ground", "rotation": 1}]})");
+  };
+  EXPECT_EQ(error_of(turning("0.017453292519943295")), "");
+  expect_error(turning("2"), {"motion", "field 'step' = 2 rad", "outside [1e-9, 1] rad"});
+  expect_error(turning("1e-12"), {"motion", "field 'step' = 1e-12 rad"});
+  // A translation's step is still a length against the scene (0.04 m here).
+  const std::string sliding = with_blocks(small, R"(, "motion": {"step": 0.1, "max_steps": 10, "supports": [{"block": "ground", "translation": [1, 0]}]})");
+  expect_error(sliding, {"motion", "field 'step' = 0.1 m is outside"});
 }
 
 // One range for the time-step factor, the DEM's stability bound (0, 1], whichever command loads

@@ -152,7 +152,7 @@ TEST(Options, TheWriterGivesBackEveryOption) {
   c.dem.kn = 1e9;
   c.dem.ks = 4e8;
   c.dem.open_gap = 1e-4;
-  c.dem.confirm_collapse = true;
+  c.dem.confirm_collapse = false;
   c.dem.hold_damping = HoldDamping::kinetic;
   c.dem.kinetic_ratio = 2e-3;
   const std::string text = case_to_json(c);
