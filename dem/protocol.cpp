@@ -58,15 +58,22 @@ void check_finite(const DemModel& m) {
 // stability limit); an unstable integration grows the kinetic energy geometrically and crosses
 // ten times the input (plus a floor far below any physical energy of the scene) within a few
 // checks.
-void check_energy(const DemModel& m, double floor) {
+void check_energy(const DemModel& m, double floor, const DemSettings& s) {
   check_finite(m);
   const double input = m.energy_input();
   const double ke = m.kinetic_energy();
   if (ke > 10 * std::max(input, 0.0) + floor) {
     std::ostringstream msg;
     msg << "dem: the integration blew up at t = " << m.time() << " s (cycle " << m.cycles() << "): kinetic energy " << ke
-        << " J exceeds the energy put in by gravity, loads and supports (" << input
-        << " J); time step too close to the stability limit for these stiffnesses and masses";
+        << " J exceeds the energy put in by gravity, loads and supports (" << input << " J); ";
+    // Undamped, a small gain per contact event is never taken out again: a block settling on a
+    // slab (friction 35 degrees) gained it at a tenth of the time-step bound too, so the step is
+    // not the first suspect there.
+    if (s.damping == 0)
+      msg << "with dem.damping 0 nothing takes out what the contacts' opening and closing between cycles adds, and no hold "
+             "can settle: set dem.damping above 0";
+    else
+      msg << "time step too close to the stability limit for these stiffnesses and masses";
     throw std::runtime_error(msg.str());
   }
 }
@@ -171,7 +178,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
       break;
     }
     if (k % kCheckEvery == 0) {
-      check_energy(m, lim.energy_floor);
+      check_energy(m, lim.energy_floor, s);
       if (largest_move(m, c, start) > lim.collapse_drift) {
         o.end = HoldEnd::collapse;
         break;
@@ -190,7 +197,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     }
     if (segment > 0 && (in_cap + 1) % (2 * segment) == 0) {
       const long long j = (in_cap + 1) / (2 * segment);  // the window is 2j segments long, its middle at segment j
-      check_energy(m, lim.energy_floor);                 // a diverging integration also drifts: it is an error, never a collapse
+      check_energy(m, lim.energy_floor, s);                 // a diverging integration also drifts: it is an error, never a collapse
       if (j >= kFirstLook && j < kLookSegments / 2 && speeding_up_far_out(m, c, start, cap_start, looks[size_t(j)], lim)) {
         o.end = HoldEnd::collapse;
         break;
@@ -237,7 +244,7 @@ MoveOutcome move(DemModel& m, const Case& c, const DemSettings& s, double d0, do
   // The periodic checks: the energy balance, and whether the structure collapsed on the way.
   auto collapsed = [&](long long cycle) {
     if (cycle % kCheckEvery != 0) return false;
-    check_energy(m, lim.energy_floor);
+    check_energy(m, lim.energy_floor, s);
     return o.collapsed = largest_move(m, c, start) > lim.move_drift;
   };
   if (s.move_time > 0) {

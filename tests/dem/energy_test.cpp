@@ -86,4 +86,19 @@ TEST(DemEnergy, UnstableTimeStepIsRefused) {
   EXPECT_THROW(dem_run(c, DemSettings::from_case(c)), std::runtime_error);
 }
 
+// A capacity run without damping: a block settling on its slab with friction 35 degrees gains
+// kinetic energy beyond the work put in even at a tenth of the time-step bound (a small gain per
+// contact event that nothing takes out again), and the guard stops the run. Its message says
+// that damping 0 is the suspect, not the time step.
+TEST(DemEnergy, AnUndampedRunThatGainsEnergySaysDampingNotTimeStep) {
+  Case c = test::tilt_case(0.2, 0.4, 35);
+  c.dem.damping = 0;
+  c.dem.timestep_factor = 0.1;
+  c.motion.max_steps = 3;
+  const RunResult r = dem_run(c, DemSettings::from_case(c));
+  ASSERT_EQ(r.status, RunStatus::error) << r.message;
+  EXPECT_NE(r.message.find("with dem.damping 0"), std::string::npos) << r.message;
+  EXPECT_EQ(r.message.find("time step too close"), std::string::npos) << r.message;
+}
+
 }  // namespace
