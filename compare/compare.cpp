@@ -134,7 +134,7 @@ std::vector<const StepRecord*> stable_records(const RunResult& r) {
   const double eps = 1e-9 * std::max(1.0, std::abs(cap));
   for (const StepRecord& s : r.steps) {
     if (!std::isfinite(s.d)) continue;
-    if (s.settled && !*s.settled) continue;  // a DEM's failed state, even at d = 0: no equilibrium
+    if (!is_equilibrium(r, s)) continue;  // a DEM's failed state, even at d = 0
     if (std::isfinite(cap) && s.d > cap + eps) continue;
     if (!out.empty() && s.d < out.back()->d) continue;  // records run forward in d
     out.push_back(&s);
@@ -212,7 +212,7 @@ std::optional<Parting> hinges_part(const Case& c, const RunResult& a, const RunR
 
 double settled_gap(const RunResult& r) {
   double g = 0.0;
-  if (!r.steps.empty() && r.steps.front().settled.value_or(true))
+  if (!r.steps.empty() && is_equilibrium(r, r.steps.front()))
     for (const OpenCorner& o : r.steps.front().open_corners)
       if (std::isfinite(o.gap)) g = std::max(g, o.gap);
   return g;
@@ -416,8 +416,10 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
     return false;
   });
   k.hinges_skipped = missing(a, b, k, "joints", [](const RunResult& r) { return !r.joints.empty(); });
-  // A run with no equilibrium at all (it does not stand as drawn) has nothing to compare.
-  const std::string stands = missing(a, b, k, "equilibrium: it does not stand as drawn", [](const RunResult& r) { return !stable_records(r).empty(); });
+  // A run with no equilibrium at all (it did not settle as drawn: it collapsed, or still moved
+  // at the hold's cap) has nothing to compare.
+  const std::string stands =
+      missing(a, b, k, "equilibrium at d = 0: it did not settle as drawn", [](const RunResult& r) { return !stable_records(r).empty(); });
   if (!stands.empty()) k.thrust_skipped = k.hinges_skipped = stands;
   // The mechanism agreement moves the joints' corners with the blocks' poses and weights each
   // joint by the force it carries: without forces every weight is 0 and no agreement exists.

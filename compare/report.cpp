@@ -360,8 +360,8 @@ std::vector<Item> settled_cracks(const Report& r) {
   std::vector<Item> items;
   for (const ReportRun& rr : r.runs) {
     std::string list;
-    if (rr.run && !rr.run->steps.empty() && !rr.run->steps.front().settled.value_or(true)) {
-      items.push_back({{rr.label + ": none: it did not settle at d = 0 (it does not stand as drawn)"}, {}});
+    if (rr.run && !rr.run->steps.empty() && !is_equilibrium(*rr.run, rr.run->steps.front())) {
+      items.push_back({{rr.label + ": none: it did not settle as drawn"}, {}});
       continue;
     }
     if (rr.run && !rr.run->steps.empty())

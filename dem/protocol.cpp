@@ -70,8 +70,8 @@ void check_energy(const DemModel& m, double floor, const DemSettings& s) {
     // slab (friction 35 degrees) gained it at a tenth of the time-step bound too, so the step is
     // not the first suspect there.
     if (s.damping == 0)
-      msg << "with dem.damping 0 nothing takes out what the contacts' opening and closing between cycles adds, and no hold "
-             "can settle: set dem.damping above 0";
+      msg << "with dem.damping 0 nothing takes out what the contacts' opening and closing between cycles adds: set dem.damping "
+             "above 0";
     else
       msg << "time step too close to the stability limit for these stiffnesses and masses";
     throw std::runtime_error(msg.str());

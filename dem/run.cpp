@@ -19,12 +19,11 @@ namespace {
 using dem::HoldEnd;
 using dem::HoldOutcome;
 
-// How far a support point travels per unit of d, m/m: its translation plus its rotation over the
-// scene. The work the supports do on the structure over an increment is of the order of the
-// weight times this times the increment.
-double support_travel_per_d(const Case& c) {
-  double v = 0;
-  for (const SupportMotion& sm : c.motion.supports) v = std::max(v, sm.translation.norm() + std::abs(sm.rotation) * scene_size(c));
+// How far a support point travels per unit of d, m/m (model/case.hpp), 1 where no support moves.
+// The work the supports do on the structure over an increment is of the order of the weight
+// times this times the increment.
+double travel_per_d(const Case& c) {
+  const double v = support_travel_per_d(c);
   return v > 0 ? v : 1.0;
 }
 
@@ -171,7 +170,7 @@ Attempt attempt(Run& u, double d0, double d1, long long watch = 0) {
   const long long c0 = u.m.cycles();
   // The hold's runaway scale, J: the same target for the whole structure's kinetic energy.
   u.lim.ke_collapse = 10 * (u.ke_height_per_d * u.r.total_weight) * (d1 - d0);
-  u.lim.move_drift = u.lim.collapse_drift + support_travel_per_d(u.c) * (d1 - d0);
+  u.lim.move_drift = u.lim.collapse_drift + travel_per_d(u.c) * (d1 - d0);
   const std::vector<Vec2> before = dem::positions(u.m, u.c);
   const dem::MoveOutcome mv = dem::move(u.m, u.c, u.s, d0, d1, u.ke_height_per_d * (d1 - d0), u.speed / 4, u.lim);
   u.speed = mv.speed;
@@ -340,8 +339,8 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   u.lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
   u.lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
   u.lim.creep_floor = std::max(0.01 * c.prd.contact_tolerance, 1e-9 * scene_size(c));
-  u.ke_height_per_d = s.kinetic_ratio * support_travel_per_d(c);
-  u.lim.move_accel = kMoveAccel * kReferenceGravity / support_travel_per_d(c);
+  u.ke_height_per_d = s.kinetic_ratio * travel_per_d(c);
+  u.lim.move_accel = kMoveAccel * kReferenceGravity / travel_per_d(c);
   u.bracket = s.bracket_fraction * s.step;
   record_settings(u);
   try {

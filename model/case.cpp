@@ -46,6 +46,26 @@ double signed_area(const std::vector<Vec2>& p) {
   return 0.5 * a;
 }
 
+double support_travel_per_d(const Case& c) {
+  const double L = scene_size(c);
+  double v = 0;
+  for (const SupportMotion& m : c.motion.supports) v = std::max(v, m.translation.norm() + std::abs(m.rotation) * L);
+  return v;
+}
+
+double distance_outside(const std::vector<Vec2>& poly, const Vec2& p) {
+  bool inside = false;
+  double d = INFINITY;
+  for (size_t i = 0, n = poly.size(); i < n; ++i) {
+    const Vec2 &a = poly[i], &b = poly[(i + 1) % n];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y())) inside = !inside;
+    const Vec2 ab = b - a;
+    const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+    d = std::min(d, (a + t * ab - p).norm());
+  }
+  return inside ? 0.0 : d;
+}
+
 Vec2 centroid(const std::vector<Vec2>& p) {
   // Relative to the first vertex, so that blocks far from the origin keep their digits.
   const Vec2 o = p.front();
@@ -156,21 +176,17 @@ struct Reader : FieldReader<CaseError, json> {
 void check_scales(const Case& c, const Reader& r) {
   const double L = scene_size(c);
   if (!(std::isfinite(L) && L > 0)) r.fail("blocks", "the scene has no finite size");
-  // Where every moving support only turns, d and its step are angles: what must stand against the
-  // scene is the arc a support's farthest point travels per step, not the step itself.
-  if (path_unit(c) == "rad") {
-    double turn = 0;
-    for (const SupportMotion& m : c.motion.supports) turn = std::max(turn, std::abs(m.rotation));
-    const double arc = c.motion.step * turn;  // rad per step: the arc over the scene size
-    if (c.motion.step > 0 && !(arc >= kFinestFraction && arc <= 1)) {
-      std::ostringstream m;
-      m << "field 'step' = " << c.motion.step << " rad turns a support by " << arc << " rad per step, outside [1e-9, 1] rad (its farthest point "
-        << "moves 1e-9 to 1 times the scene size, " << L << " m)";
-      r.fail("motion", m.str());
-    }
-  } else {
-    check_scene_options(c.motion, L, r.source);
+  // The step against the scene: what a support point travels per step, its translation plus
+  // its turn times the scene size (so an angular step counts as the arc it turns the scene
+  // through, whatever the scene's size), 1e-9 to 1 times the scene size.
+  const double per_step = c.motion.step * support_travel_per_d(c);
+  if (c.motion.step > 0 && per_step > 0 && !(per_step >= kFinestFraction * L && per_step <= L)) {
+    std::ostringstream m;
+    m << "field 'step' = " << c.motion.step << " " << path_unit(c) << " moves a support point by " << per_step << " m per step, outside ["
+      << kFinestFraction * L << ", " << L << "] m for a scene of " << L << " m (1e-9 to 1 times the scene size)";
+    r.fail("motion", m.str());
   }
+  check_scene_options(c.motion, L, r.source);
   check_scene_options(c.prd, L, r.source);
   check_scene_options(c.dem, L, r.source);
   // The weight and what the supports travel over the run: finite, so energies and ratios are.
@@ -181,7 +197,7 @@ void check_scales(const Case& c, const Reader& r) {
   const Vec2 P = dead_load_resultant(c);
   if (!(P.norm() > 0)) r.fail("case", "field 'gravity': nothing loads the structure (gravity 0 and no loads)");
   for (const SupportMotion& m : c.motion.supports) {
-    const double travel = c.motion.step * c.motion.max_steps * (m.translation.norm() + std::abs(m.rotation) * L);
+    const double travel = c.motion.step * c.motion.max_steps * (m.translation.norm() + std::abs(m.rotation) * L);  // this support's
     if (!std::isfinite(travel) || travel > kMaxCoordinate)
       r.fail("motion of block '" + printable(c.blocks[m.block].id) + "'", "the support would travel beyond 1e5 m over max_steps");
   }
@@ -271,6 +287,17 @@ Case parse_case(const std::string& text, const std::string& source) {
       r.range(l.force.norm(), 0, kMaxForce, where, "force", "N (magnitude)");
       l.point = jl.contains("point") ? r.point(jl["point"], where, "point") : centroid(c.blocks[l.block].vertices);
       r.range(l.point.cwiseAbs().maxCoeff(), 0, kMaxCoordinate, where, "point", "m (|x|, |y|)");
+      // A load acts at a material point of its block: a point off it (a mistyped coordinate
+      // carried the block's load on a lever 5 m long and moved a capacity by a third) is refused.
+      // On the outline within a millionth of the block's size counts as on it.
+      const std::vector<Vec2>& poly = c.blocks[l.block].vertices;
+      const double off = distance_outside(poly, l.point);
+      if (off > 1e-6 * bounds(poly).size()) {
+        std::ostringstream m;
+        m << "field 'point' (" << l.point.x() << ", " << l.point.y() << ") m lies " << off << " m outside block '"
+          << printable(c.blocks[l.block].id) << "': a load acts at a point of its block";
+        r.fail(where, m.str());
+      }
       c.loads.push_back(l);
     }
   }

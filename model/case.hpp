@@ -184,6 +184,12 @@ void validate_geometry(const Case& c);
 // Polygon helpers (any orientation).
 double signed_area(const std::vector<Vec2>& poly);
 Vec2 centroid(const std::vector<Vec2>& poly);
+// How far a support point travels per unit of d, m/m: the largest over the moving supports of
+// its translation plus its rotation times the scene size (0 where none moves).
+double support_travel_per_d(const Case& c);
+// How far p lies outside the polygon (0 inside or on it), m: the distance to its nearest edge
+// where an even-odd crossing test puts p outside.
+double distance_outside(const std::vector<Vec2>& poly, const Vec2& p);
 // Second moment of area about the centroid (polar), m^4.
 double polar_moment(const std::vector<Vec2>& poly);
 // An axis-aligned bounding box; empty (lo > hi) until a point is added.

@@ -45,7 +45,8 @@ const Option<Motion> kMotionRows[] = {
      .member = &Motion::step,
      .unit = "m",
      .range = {0, kMaxLength, true},
-     .scene = {kFinestFraction, 1},
+     .note = "rad where every moving support only turns; a support point must travel 1e-9 to 1 times the scene size per step: "
+             "step x (the translation's length + the rotation x the scene size)",
      .help = "Increment of the path parameter d per step (rad where every moving support only turns: d is then an angle)",
      .flag = "--step",
      .on_compare = true},
@@ -223,6 +224,7 @@ const Option<DemOptions> kDemRows[] = {
      .help = "Confirm a located collapse by the short move from the bracket's last equilibrium; a failure it does not "
              "reproduce becomes an equilibrium and the run goes on (dem/README.md, \"Protocol\", stage 4)",
      .flag = "--confirm-collapse",
+     .on_compare = true,
      .in_case = Shown::when_set,
      .in_results = Shown::always},
     {.name = "hold_damping",

@@ -27,12 +27,12 @@ struct Interval {
   bool contains(double x) const { return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi); }
 };
 
-// A length checked against the scene size L too (once the blocks are read): [lo L, hi L], where
-// the value is above 0 (0 is "the default" for those that allow it). hi = 0: no such check.
 // Of the scene size: the finest length a case may set; below it a length is lost in the
 // round-off of the coordinates.
 constexpr double kFinestFraction = 1e-9;
 
+// A length checked against the scene size L too (once the blocks are read): [lo L, hi L], where
+// the value is above 0 (0 is "the default" for those that allow it). hi = 0: no such check.
 struct SceneRange {
   double lo = 0, hi = 0;
   const char* why = "";  // said after the fractions in a refusal

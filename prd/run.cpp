@@ -226,8 +226,11 @@ void go_back(Walk& w) {
 void record_collapse(Walk& w, const Solved& sv, RunResult& r) {
   r.collapsed = true;
   r.status = RunStatus::collapse;
-  r.events->push_back(make_event(w.m, EventKind::collapse, w.cur.d, w.h_in, {}));
   r.collapse = Collapse{collapse_mechanism(w.m, sv.h), w.cur.d, w.rec.poses};
+  // The collapse event names the corners its mechanism opens, as an opening event does.
+  Event ev = make_event(w.m, EventKind::collapse, w.cur.d, w.h_in, {});
+  ev.corners = r.collapse->mechanism.open_corners;
+  r.events->push_back(ev);
   if (!w.prev) r.message = "unstable as it stands";
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "common.hpp"
@@ -110,6 +111,25 @@ TEST(CommandLine, CheckStepAndFrictionAngleAreCheckedLikeTheCase) {
   const Ran f = run("prd " + kTilt + " --out " + (dir.path / "o").string() + " --friction-angle nan", dir);
   EXPECT_EQ(f.rc, 2);
   EXPECT_NE(f.err.find("--friction-angle: must be a finite number"), std::string::npos) << f.err;
+}
+
+// A switch on by default is turned off by `--name=false`, on `dem` and on `compare`, and the
+// results' settings say which was run (dem.confirm_collapse, on by default since 2026-11-27).
+TEST(CommandLine, ASwitchOnByDefaultTurnsOffWithEqualsFalse) {
+  Scratch dir("cli-switch");
+  const auto confirm = [&](const std::string& flags) {
+    const std::string out = (dir.path / "o").string();
+    const Ran r = run("dem " + kTilt + " --out " + out + " --quiet --max-steps 2" + flags, dir);
+    EXPECT_EQ(r.rc, 0) << flags << " | " << r.err;
+    return nlohmann::json::parse(test::read(dir.path / "o" / "results.json"))["settings"]["confirm_collapse"].get<bool>();
+  };
+  EXPECT_TRUE(confirm(""));
+  EXPECT_FALSE(confirm(" --confirm-collapse=false"));
+  EXPECT_TRUE(confirm(" --confirm-collapse"));
+  const Ran c = run("compare " + kTilt + " --out " + (dir.path / "c").string() + " --quiet --max-steps 2 --confirm-collapse=false", dir);
+  EXPECT_EQ(c.rc, 0) << c.err;
+  const nlohmann::json dem = nlohmann::json::parse(test::read(dir.path / "c" / "dem" / "results.json"));
+  EXPECT_FALSE(dem["settings"]["confirm_collapse"].get<bool>());
 }
 
 // A case whose supports do not move is refused by the capacity commands (exit 2, one line),

@@ -447,22 +447,49 @@ TEST(CaseErrors, MaxStepsBeyondItsRangeSaysSo) {
   EXPECT_EQ(error_of(with_blocks(std::string(kGround) + kBlock, R"(, "motion": {"max_steps": 100000000})")), "");
 }
 
-// Where every moving support only turns, the step is an angle: it stands against the scene as
-// the arc it turns the supports through, so a tilting block drawn a hundred times smaller takes
-// the same 1-degree step (it was refused as a step of 0.017 m in a scene of 0.012 m), and a
-// step that turns a support by more than a radian, or by less than 1e-9 of one, is refused.
-TEST(CaseErrors, AnAngularStepStandsAgainstTheSceneAsAnArc) {
-  const std::string small = R"({"id": "ground", "vertices": [[-0.02, -0.005], [0.02, -0.005], [0.02, 0], [-0.02, 0]], "support": true},
+// A step stands against the scene by what it moves a support point: its translation plus its
+// turn times the scene size. So the tilting block drawn at a hundredth of its size (a scene of
+// 0.012 m) takes the same 1-degree step, which was refused as a step of 0.017 m against 0.012 m;
+// a turn of 0.01 rad per unit of d takes a step of 50; and a turn of 2 rad per step is refused,
+// and so is one of 9 rad per step beside a support that translates (d in m then: the step was
+// checked as a length, 0.01 m in a scene of 0.014 m, and passed).
+TEST(CaseErrors, AStepStandsAgainstTheSceneByTheTravelOfTheSupports) {
+  const std::string small = R"({"id": "ground", "vertices": [[-0.006, -0.002], [0.006, -0.002], [0.006, 0], [-0.006, 0]], "support": true},
       {"id": "b", "vertices": [[0, 0], [0.005, 0], [0.005, 0.01], [0, 0.01]], "density": 1})";
-  const auto turning = [&](const std::string& step) {
-    return with_blocks(small, R"(, "motion": {"step": )" + step + R"(, "max_steps": 10, "supports": [{"block": "ground", "rotation": 1}]})");
+  const auto turning = [&](const std::string& step, const std::string& rotation) {
+    return with_blocks(small, R"(, "motion": {"step": )" + step + R"(, "max_steps": 10, "supports": [{"block": "ground", "rotation": )" + rotation +
+                                  "}]}");
   };
-  EXPECT_EQ(error_of(turning("0.017453292519943295")), "");
-  expect_error(turning("2"), {"motion", "field 'step' = 2 rad", "outside [1e-9, 1] rad"});
-  expect_error(turning("1e-12"), {"motion", "field 'step' = 1e-12 rad"});
-  // A translation's step is still a length against the scene (0.04 m here).
-  const std::string sliding = with_blocks(small, R"(, "motion": {"step": 0.1, "max_steps": 10, "supports": [{"block": "ground", "translation": [1, 0]}]})");
-  expect_error(sliding, {"motion", "field 'step' = 0.1 m is outside"});
+  EXPECT_EQ(error_of(turning("0.017453292519943295", "1")), "");
+  EXPECT_EQ(error_of(turning("50", "0.01")), "");
+  expect_error(turning("2", "1"), {"motion", "field 'step' = 2 rad moves a support point by 0.024 m per step", "for a scene of 0.012 m"});
+  expect_error(turning("1e-12", "1"), {"motion", "field 'step' = 1e-12 rad"});
+  // Two supports, one settling, one turning 900 rad per m of d: 0.01 m of d turns it 9 rad.
+  const std::string two = small + R"(, {"id": "other", "vertices": [[0.006, -0.002], [0.008, -0.002], [0.008, 0], [0.006, 0]], "support": true})";
+  const auto mixed = [&](const std::string& turn) {
+    return with_blocks(two, R"(, "motion": {"step": 0.01, "max_steps": 5, "supports": [{"block": "ground", "translation": [0, -1]}, {"block": "other", "rotation": )" +
+                                turn + "}]}");
+  };
+  EXPECT_EQ(error_of(mixed("1")), "");
+  expect_error(mixed("900"), {"motion", "field 'step' = 0.01 m moves a support point by"});
+}
+
+// A load acts at a point of its block: 5 m off a 1 m block it was accepted and moved the
+// capacity by a third (a lever the block does not have); on the outline it is the block's, and
+// without a point it acts at the centroid.
+TEST(CaseErrors, ALoadOffItsBlockIsRefused) {
+  const auto with_load = [](const std::string& point) {
+    return with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1})",
+                       R"(, "loads": [{"block": "b", "force": [0, -100])" + point + "}]");
+  };
+  expect_error(with_load(R"(, "point": [5, 5])"), {"load #0", "field 'point' (5, 5) m lies", "outside block 'b'"});
+  expect_error(with_load(R"(, "point": [0.5, 1.001])"), {"field 'point'", "0.001 m outside"});
+  EXPECT_EQ(error_of(with_load(R"(, "point": [1, 0.5])")), "");   // on the outline
+  EXPECT_EQ(error_of(with_load(R"(, "point": [0.2, 0.7])")), "");  // inside
+  const Case c = parse_case(with_load(""), "c.json");
+  ASSERT_EQ(c.loads.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.loads[0].point.x(), 0.5);
+  EXPECT_DOUBLE_EQ(c.loads[0].point.y(), 0.5);
 }
 
 // One range for the time-step factor, the DEM's stability bound (0, 1], whichever command loads

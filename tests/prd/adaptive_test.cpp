@@ -50,6 +50,13 @@ TEST(PrdAdaptive, TipsWithinTheEventToleranceOfTheClosedForm) {
   ASSERT_FALSE(ev.empty());
   EXPECT_EQ(ev.back().kind, EventKind::collapse);
   EXPECT_LE(ev.back().within, 1e-5 * (1 + 1e-6));
+  // The collapse event names the corner the toppling opens (the block turns about one end of
+  // its only joint, the other lifts), the collapse mechanism's (it was empty).
+  ASSERT_TRUE(r.collapse);
+  ASSERT_EQ(ev.back().corners.size(), 1u);
+  ASSERT_EQ(r.collapse->mechanism.open_corners.size(), 1u);
+  EXPECT_EQ(ev.back().corners[0].joint, r.collapse->mechanism.open_corners[0].joint);
+  EXPECT_EQ(ev.back().corners[0].corner, r.collapse->mechanism.open_corners[0].corner);
 }
 
 // The acceptance test: the capacity agrees with a fixed-step run at a quarter of the

@@ -166,6 +166,7 @@ def main():
     refuses("results", dict(minimal, steps=[{"step": 0, "d": 0, "cycles": 3}]), "a DEM hold field without hold_end")
     case = load(block)
     refuses("case", dict(case, colour="red"), "an unknown field")
+    refuses("case", {k: v for k, v in case.items() if k != "format"}, "a case without its format")
     refuses("case", dict(case, blocks=[{"id": "b", "vertices": [[0, 0], [1, 0], [1, 1]]}]), "a free block without density")
     cat = load(catalogue)
     bad = json.loads(json.dumps(cat))
