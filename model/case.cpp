@@ -197,7 +197,7 @@ void check_scales(const Case& c, const Reader& r) {
   const Vec2 P = dead_load_resultant(c);
   if (!(P.norm() > 0)) r.fail("case", "field 'gravity': nothing loads the structure (gravity 0 and no loads)");
   for (const SupportMotion& m : c.motion.supports) {
-    const double travel = c.motion.step * c.motion.max_steps * (m.translation.norm() + std::abs(m.rotation) * L);  // this support's
+    const double travel = c.motion.step * c.motion.max_steps * (m.translation.norm() + std::abs(m.rotation) * L);
     if (!std::isfinite(travel) || travel > kMaxCoordinate)
       r.fail("motion of block '" + printable(c.blocks[m.block].id) + "'", "the support would travel beyond 1e5 m over max_steps");
   }
