@@ -43,10 +43,13 @@ void finish_arch(Case& c, bool spreading, double step, int max_steps) {
 }  // namespace
 
 Case circular_arch(const CircularArch& p) {
-  if (!(p.radius > 0) || !(p.thickness > 0) || !(p.thickness < 2 * p.radius))
-    throw CaseError("circular arch: need radius > 0 and 0 < thickness < 2 radius");
+  if (!std::isfinite(p.radius) || !(p.radius > 0) || !(p.thickness > 0) || !(p.thickness < 2 * p.radius))
+    throw CaseError("circular arch: need a finite radius > 0 and 0 < thickness < 2 radius");
   if (!(p.embrace > 0) || !(p.embrace < 2 * M_PI)) throw CaseError("circular arch: embrace must lie in (0, 2 pi)");
   if (p.voussoirs < 1) throw CaseError("circular arch: need at least one voussoir");
+  // A voussoir is the quadrilateral of its four corners: spanning half a turn or more, its
+  // intrados and extrados chords cross or meet (one voussoir over a semicircle has no area).
+  if (!(p.embrace / p.voussoirs < M_PI)) throw CaseError("circular arch: voussoirs: each must span less than half a turn (embrace / voussoirs)");
   Case c;
   c.source = "circular-arch";
   c.name = "circular arch";

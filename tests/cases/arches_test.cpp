@@ -181,6 +181,31 @@ TEST(PointedArch, SpreadingRightSupport) {
   EXPECT_DOUBLE_EQ(c.motion.step, 0.001);
 }
 
+// A circular arch the generator cannot draw is refused naming what: an infinite radius (its
+// vertices were refused as "not a finite number", naming a block), one voussoir over a semicircle
+// (a voussoir with no area, refused as block v0's "zero area").
+TEST(CircularArch, RejectsWhatItCannotDraw) {
+  CircularArch p;
+  p.radius = INFINITY;
+  try {
+    circular_arch(p);
+    ADD_FAILURE() << "an infinite radius was drawn";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("finite radius"), std::string::npos) << e.what();
+  }
+  p = CircularArch();
+  p.embrace = M_PI;
+  p.voussoirs = 1;
+  try {
+    circular_arch(p);
+    ADD_FAILURE() << "one voussoir over a semicircle was drawn";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("voussoirs: each must span less than half a turn"), std::string::npos) << e.what();
+  }
+  p.voussoirs = 2;  // a quarter turn each: drawn
+  EXPECT_NO_THROW(circular_arch(p));
+}
+
 TEST(PointedArch, RejectsImpossibleGeometry) {
   PointedArch p;
   p.embrace = 10 * kPi / 180;
