@@ -38,7 +38,7 @@ CLI::Option* CaseFlags::add(CLI::App* sub, const OptionInfo& i, const std::strin
   switch (i.type) {
     case OptionType::number: return sub->add_option(f.name, f.number, text);
     case OptionType::integer: return sub->add_option(f.name, f.integer, text);
-    case OptionType::boolean: return f.given = sub->add_flag(f.name, f.on, text);
+    case OptionType::boolean: return f.flag = sub->add_flag(f.name, f.on, text);
     case OptionType::word: return sub->add_option(f.name, f.text, text);
     case OptionType::words: return sub->add_option(f.name, f.texts, text)->allow_extra_args(false);
   }
@@ -49,7 +49,7 @@ Case CaseFlags::apply(Case c) const {
   for (const Flag& f : flags_) {
     if (f.number) c = with_option(c, f.key, *f.number);
     if (f.integer) c = with_option(c, f.key, *f.integer);
-    if (f.given && f.given->count() > 0) c = with_option(c, f.key, f.on);
+    if (f.switch_given()) c = with_option(c, f.key, f.on);
     if (f.text) c = with_option(c, f.key, *f.text);
     if (!f.texts.empty()) c = with_option(c, f.key, f.texts);
   }
@@ -61,7 +61,7 @@ std::string CaseFlags::command_line() const {
   for (const Flag& f : flags_) {
     if (f.number) o << " " << f.name << " " << *f.number;
     if (f.integer) o << " " << f.name << " " << *f.integer;
-    if (f.given && f.given->count() > 0) o << " " << f.name << (f.on ? "" : "=false");
+    if (f.switch_given()) o << " " << f.name << (f.on ? "" : "=false");
     if (f.text) o << " " << f.name << " " << *f.text;
     for (const std::string& t : f.texts) o << " " << f.name << " " << t;
   }

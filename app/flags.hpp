@@ -37,7 +37,8 @@ class CaseFlags {
     std::optional<double> number;
     std::optional<long long> integer;
     bool on = false;  // a boolean option: `--name` is true, `--name=false` false
-    CLI::Option* given = nullptr;  // the boolean's flag, whose count says whether it was given
+    CLI::Option* flag = nullptr;  // the boolean's flag, whose count says whether it was given
+    bool switch_given() const { return flag && flag->count() > 0; }
     std::optional<std::string> text;
     std::vector<std::string> texts;
   };

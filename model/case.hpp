@@ -184,8 +184,10 @@ void validate_geometry(const Case& c);
 // Polygon helpers (any orientation).
 double signed_area(const std::vector<Vec2>& poly);
 Vec2 centroid(const std::vector<Vec2>& poly);
-// How far a support point travels per unit of d, m/m: the largest over the moving supports of
-// its translation plus its rotation times the scene size (0 where none moves).
+// How far a point a support carries travels per unit of d, m/m: its translation plus its
+// rotation times the scene size L; for the case, the largest over its supports (0 where none
+// moves).
+double support_travel_per_d(const SupportMotion& m, double L);
 double support_travel_per_d(const Case& c);
 // How far p lies outside the polygon (0 inside or on it), m: the distance to its nearest edge
 // where an even-odd crossing test puts p outside.
