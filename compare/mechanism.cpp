@@ -293,14 +293,20 @@ std::optional<StepRecord> collapse_state(const RunResult& r) {
   const double eps = 1e-9 * std::max(1.0, std::abs(r.capacity));
   for (auto it = r.steps.rbegin(); it != r.steps.rend(); ++it)
     if (it->d > r.capacity + eps && !is_equilibrium(r, *it)) return *it;
-  // PRD writes the configuration it found unbounded: where the last step's mechanism took it.
-  if (r.collapse && !r.steps.empty() && !r.collapse->poses.empty() && std::isfinite(r.collapse->d) &&
-      r.collapse->poses.size() == r.steps.front().poses.size()) {
-    StepRecord s;
-    s.index = -1;
-    s.d = r.collapse->d;
-    s.poses = r.collapse->poses;
-    return s;
+  // PRD writes the configuration it found unbounded, and that configuration moved along its
+  // collapse mechanism by up to one step (moved_poses): the latter where it has it, since the
+  // last step's own motion may move no joint at all (a block carried by its slab to its tipping
+  // tilt), and otherwise the former: where the last step's mechanism took it.
+  if (r.collapse && !r.steps.empty() && std::isfinite(r.collapse->d)) {
+    const size_t nb = r.steps.front().poses.size();
+    const std::vector<Pose>& poses = r.collapse->moved_poses.size() == nb ? r.collapse->moved_poses : r.collapse->poses;
+    if (!poses.empty() && poses.size() == nb) {
+      StepRecord s;
+      s.index = -1;
+      s.d = r.collapse->d;
+      s.poses = poses;
+      return s;
+    }
   }
   return std::nullopt;
 }

@@ -228,6 +228,7 @@ ojson to_json(const RunResult& r, const Case& c) {
     ojson x = mechanism_json(r.collapse->mechanism, c);
     x["d"] = json_number(r.collapse->d);
     x["poses"] = poses_json(r.collapse->poses);
+    if (!r.collapse->moved_poses.empty()) x["moved_poses"] = poses_json(r.collapse->moved_poses);
     j["collapse"] = x;
   }
   if (r.wall_s) j["wall_s"] = json_number(*r.wall_s);
@@ -264,12 +265,12 @@ std::string csv_field(const std::string& s) {
   return o + "\"";
 }
 
-std::string steps_csv(const RunResult& r) {
+std::string steps_csv(const RunResult& r, const Case& c) {
   std::ostringstream o;
   o.precision(12);
   o << "step,d_m,energy_J,open_corners,cracked_joints";
-  if (!r.steps.empty())
-    for (const Reaction& x : r.steps.front().reactions) o << "," << csv_field("Fx_" + x.support + "_N") << "," << csv_field("Fy_" + x.support + "_N");
+  for (const Block& b : c.blocks)
+    if (b.support) o << "," << csv_field("Fx_" + b.id + "_N") << "," << csv_field("Fy_" + b.id + "_N");
   o << "\n";
   for (const StepRecord& s : r.steps) {
     o << s.index << "," << s.d << "," << s.energy << "," << s.open_corners.size() << "," << s.cracked.size();
@@ -284,7 +285,7 @@ void write_results(const std::string& dir, const RunResult& r, const Case& c) {
   std::filesystem::create_directories(dir, ec);
   if (ec) throw std::runtime_error(dir + ": cannot create the output directory: " + ec.message());
   write_file_atomic(dir + "/results.json", to_json(r, c).dump(1) + "\n");
-  write_file_atomic(dir + "/steps.csv", steps_csv(r));
+  write_file_atomic(dir + "/steps.csv", steps_csv(r, c));
 }
 
 void require_finite(const StepRecord& s) {

@@ -177,6 +177,10 @@ struct Collapse {
   Mechanism mechanism;
   double d = 0.0;           // m
   std::vector<Pose> poses;  // one per block
+  // One per block, or none (results written before it): the configuration moved along the
+  // collapse mechanism alone (the supports held, every increment boxed to at most one step), so
+  // that the mechanism can be compared where the last step's own motion moves no joint.
+  std::vector<Pose> moved_poses;
 };
 
 // The DEM's collapse bracket (dem/README.md): the last equilibrium, the failed increment's end,
@@ -261,8 +265,10 @@ nlohmann::ordered_json to_json(const RunResult& r, const Case& c);
 // A CSV field as RFC 4180 writes it: quoted, quotes doubled, where it holds a comma, a quote or a
 // line break (an id may hold any of them), so every row of a file has the header's columns.
 std::string csv_field(const std::string& s);
-// One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support.
-std::string steps_csv(const RunResult& r);
+// One row per step: step, d, energy, open corners, cracked joints, then Fx and Fy of every support
+// (the case's support blocks in its order, as both solvers record them; named from the case so
+// that a run with no step, a structure that does not stand as drawn, has the same header).
+std::string steps_csv(const RunResult& r, const Case& c);
 // Writes DIR/results.json and DIR/steps.csv, each through a temporary file and a rename, so a
 // reader (or a later failure) never sees a half-written file. Creates DIR.
 void write_results(const std::string& dir, const RunResult& r, const Case& c);

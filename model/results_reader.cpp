@@ -292,12 +292,13 @@ void read_prd_fields(const Reader& in, const ojson& j, RunResult& r) {
   if (j.contains("collapse")) {
     const std::string w = "collapse";
     const ojson& x = j["collapse"];
-    in.only(x, w, {"open_corners", "moving_blocks", "d", "poses"});
+    in.only(x, w, {"open_corners", "moving_blocks", "d", "poses", "moved_poses"});
     Collapse col;
     col.mechanism.open_corners = read_corners(in, in.array(x, w, "open_corners"), member(w, "open_corners"), nullptr);
     for (const ojson& b : in.array(x, w, "moving_blocks")) col.mechanism.moving_blocks.push_back(in.block(b, w, "moving_blocks"));
     col.d = in.maybe(x, w, "d", kNaN);
     col.poses = in.poses(in.array(x, w, "poses"), w, "poses");
+    if (x.contains("moved_poses")) col.moved_poses = in.poses(in.array(x, w, "moved_poses"), w, "moved_poses");
     r.collapse = std::move(col);
   }
 }

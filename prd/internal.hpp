@@ -265,7 +265,7 @@ void start_from(Model& m, const PrdStart& start);
 void record_held(const Model& m, StepRecord& rec);
 void read_forces(const Model& m, StepRecord& rec);
 std::vector<double> slacks(const Model& m, double scale);
-Mechanism collapse_mechanism(Model& m, double scale);
+Mechanism collapse_mechanism(Model& m, double scale, std::vector<Pose>* moved = nullptr);
 void lp_check_fields(const Model& m, double scale, StepRecord& rec);
 std::vector<double> column_values(const Model& m);
 void save_basis(const Model& m, Accepted& a);

@@ -513,7 +513,9 @@ std::vector<double> slacks(const Model& m, double scale) {
 
 // The collapse mechanism: the same LP with every increment boxed to one unit, so that it has
 // an optimum whose open corners show the mechanism. The columns are freed again afterwards.
-Mechanism collapse_mechanism(Model& m, double scale) {
+// `moved`, where given, gets every block's pose after the mechanism's own boxed increment (the
+// supports held; each increment at most `scale`).
+Mechanism collapse_mechanism(Model& m, double scale, std::vector<Pose>* moved) {
   glp_prob* lp = m.lp.get();
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_DB, -1, 1);
   m.kept.rows.clear();  // its vertex ignores the boxes
@@ -546,6 +548,33 @@ Mechanism collapse_mechanism(Model& m, double scale) {
       double v = 0;
       for (int k = 0; k < 3; ++k) v = std::max(v, std::abs(col_value(m, m.col[b] + k)));
       if (v > 1e-6) out.moving_blocks.push_back(static_cast<int>(b));
+    }
+  }
+  if (moved && st == LpStatus::optimal) {
+    // A configuration that shows the mechanism itself: where the last step's motion alone
+    // moves no joint (a block carried by its slab up to its tipping tilt), the collapse
+    // configuration cannot. The ray's LP (every bound at zero, boxed), without the step's
+    // imposed motion: the boxed step's optimum mixes the motion the step drives with the free
+    // mechanism, and which corner of the boxes it takes is not unique.
+    if (!ray) {
+      for (size_t i = 0; i < m.row_type.size(); ++i)
+        if (m.row_type[i] != GLP_FR) glp_set_row_bnds(lp, static_cast<int>(i) + 1, m.row_type[i], 0, 0);
+      st = solve(m);
+      m.glpk_behind = true;
+    }
+    if (st == LpStatus::optimal) {
+      const std::vector<double> U = column_values(m), none;
+      moved->clear();
+      for (size_t b = 0; b < m.cen.size(); ++b) {
+        Pose p{m.cen[b].x(), m.cen[b].y(), m.angle[b]};
+        if (m.col[b] > 0) {
+          Vec2 cen;
+          pose_after(m, Path{U, none}, b, scale, cen, p.angle);
+          p.x = cen.x();
+          p.y = cen.y();
+        }
+        moved->push_back(p);
+      }
     }
   }
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_FR, 0, 0);

@@ -226,7 +226,10 @@ void go_back(Walk& w) {
 void record_collapse(Walk& w, const Solved& sv, RunResult& r) {
   r.collapsed = true;
   r.status = RunStatus::collapse;
-  r.collapse = Collapse{collapse_mechanism(w.m, sv.h), w.cur.d, w.rec.poses};
+  r.collapse = Collapse{};
+  r.collapse->mechanism = collapse_mechanism(w.m, sv.h, &r.collapse->moved_poses);
+  r.collapse->d = w.cur.d;
+  r.collapse->poses = w.rec.poses;
   // The collapse event names the corners its mechanism opens, as an opening event does.
   Event ev = make_event(w.m, EventKind::collapse, w.cur.d, w.h_in, {});
   ev.corners = r.collapse->mechanism.open_corners;

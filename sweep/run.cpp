@@ -34,7 +34,7 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& run, bool keep) {
     row.hinges = hinges_at_collapse(c, r);
     // The case as the run's row names it (without the PRD's sliding check, a setting): what
     // `masonry compare CASE --runs` is given for any two runs of the same point.
-    if (keep) row.files = SweepRow::Files{case_to_json(own), to_json(r, c).dump(1) + "\n", steps_csv(r)};
+    if (keep) row.files = SweepRow::Files{case_to_json(own), to_json(r, c).dump(1) + "\n", steps_csv(r, c)};
     row.capacity = r.capacity;
     row.time_s = r.timing.total_s;
     row.message = r.message;

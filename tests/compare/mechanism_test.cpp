@@ -142,8 +142,8 @@ TEST(Mechanism, TheMirrorImageOnASymmetricArchAgrees) {
   ASSERT_EQ(k.motion.size(), 6u);
   for (const MotionCheck& m : k.motion) {
     EXPECT_TRUE(m.mirror);
-    EXPECT_GT(m.agreement, 0.999);
-    EXPECT_TRUE(m.differ.empty());  // the same motion to round-off
+    EXPECT_GT(m.agreement, 0.999) << interval_text(m, k.d_unit, "a", "b");
+    EXPECT_TRUE(m.differ.empty()) << interval_text(m, k.d_unit, "a", "b");  // the same motion to round-off
   }
   // Read directly, without the mirror, they move at other joints.
   Case lopsided = c;
@@ -219,15 +219,34 @@ TEST(Mechanism, TheFrictionLaddersSlidingAndTopplingRungsDisagreeAtCollapse) {
   EXPECT_NE(v[0].find("ground/block"), std::string::npos) << v[0];
   EXPECT_TRUE(check_tolerances(same, t).empty());
   // PRD's block is carried rigidly by the tilting ground until it topples: no joint moves, so its
-  // agreement with any run is not determined (null), and the check does not fail on it.
-  const Comparison rigid = compare_runs(c, prd(c), topples);
-  for (const MotionCheck& m : rigid.motion) {
-    EXPECT_FALSE(m.a_moves);
-    EXPECT_TRUE(std::isnan(m.agreement));
+  // agreement with any run over the range is not determined (null), and the check does not fail
+  // on it. At collapse PRD's side is its collapse mechanism (the collapse configuration moved
+  // along it, `moved_poses`): the block turning about its downhill corner, as the toppling rung
+  // does and the sliding one does not. (Before, PRD's collapse state was the last step's motion
+  // alone, no joint moving: "n/a", and the sliding rung passed against it.)
+  const RunResult p = prd(c);
+  const Comparison rigid = compare_runs(c, p, topples);
+  ASSERT_EQ(rigid.motion.size(), 6u);
+  for (size_t n = 0; n + 1 < rigid.motion.size(); ++n) {
+    EXPECT_FALSE(rigid.motion[n].a_moves);
+    EXPECT_TRUE(std::isnan(rigid.motion[n].agreement));
   }
-  t.collapse_mechanism.reset();
-  EXPECT_TRUE(check_tolerances(rigid, t).empty());
   EXPECT_TRUE(to_json(rigid)["mechanism_agreement"][0]["agreement"].is_null());
+  ASSERT_TRUE(rigid.motion.back().collapse);
+  EXPECT_TRUE(rigid.motion.back().a_moves);
+  EXPECT_GT(rigid.motion.back().agreement, 0.99);
+  EXPECT_TRUE(check_tolerances(rigid, t).empty());
+  const Comparison wrong = compare_runs(c, p, slides);
+  EXPECT_LT(wrong.motion.back().agreement, 0.1);
+  ASSERT_EQ(check_tolerances(wrong, t).size(), 1u);
+  // The moved configuration is the collapse configuration plus the boxed increments: the block
+  // turns relative to the ground by a part of a step (its increments at most one step of
+  // displacement each, its turn's times its radius, 0.22 m, among them).
+  ASSERT_TRUE(p.collapse.has_value());
+  ASSERT_EQ(p.collapse->moved_poses.size(), p.collapse->poses.size());
+  const double turn = (p.collapse->moved_poses[1].angle - p.collapse->poses[1].angle) - (p.collapse->moved_poses[0].angle - p.collapse->poses[0].angle);
+  EXPECT_GT(std::abs(turn), 0.1 * c.motion.step);
+  EXPECT_LE(std::abs(turn), c.motion.step / 0.2);
 }
 
 // The command: PRD against PRD held on another mechanism exits 1 and names the mechanism check;

@@ -43,6 +43,15 @@ std::vector<std::vector<std::string>> rfc4180(const std::string& text) {
 TEST(StepsCsv, OneColumnCountWhateverTheIds) {
   // Support ids with a comma, a quote, a line break and a carriage return (all valid case ids).
   const std::vector<std::string> ids = {"left,pier", "the \"right\" pier", "new\nline", "cr\rhere", "plain"};
+  Case c;
+  c.blocks.push_back(Block{});  // a free block between the supports: not a column
+  c.blocks.back().id = "free";
+  for (const std::string& id : ids) {
+    Block b;
+    b.id = id;
+    b.support = true;
+    c.blocks.push_back(b);
+  }
   RunResult r;
   r.method = "prd";
   for (int k = 0; k < 3; ++k) {
@@ -52,7 +61,7 @@ TEST(StepsCsv, OneColumnCountWhateverTheIds) {
     for (size_t i = 0; i < ids.size(); ++i) s.reactions.push_back({ids[i], Vec2(1.0 + k, -2.0 * static_cast<double>(i)), 0});
     r.steps.push_back(s);
   }
-  const auto rows = rfc4180(steps_csv(r));
+  const auto rows = rfc4180(steps_csv(r, c));
   ASSERT_EQ(rows.size(), 4u);
   for (const auto& row : rows) EXPECT_EQ(row.size(), 5 + 2 * ids.size());
   for (size_t i = 0; i < ids.size(); ++i) {
@@ -60,6 +69,11 @@ TEST(StepsCsv, OneColumnCountWhateverTheIds) {
     EXPECT_EQ(rows[0][6 + 2 * i], "Fy_" + ids[i] + "_N");
     EXPECT_EQ(std::stod(rows[2][6 + 2 * i]), -2.0 * static_cast<double>(i));
   }
+  // A run without a step (a structure that does not stand as drawn) has the same header.
+  r.steps.clear();
+  const auto empty = rfc4180(steps_csv(r, c));
+  ASSERT_EQ(empty.size(), 1u);
+  EXPECT_EQ(empty[0], rows[0]);
 }
 
 StepRecord dem_record(int index, double d, bool settled) {
