@@ -359,10 +359,29 @@ void check_consistency(const Reader& in, const RunResult& r, bool has_stable_ste
               "field 'step' = " + std::to_string(b.index) + " after " + std::to_string(a.index) + ": step indices must be consecutive");
     if (b.d < a.d) in.fail(item("steps", k), "field 'd' = " + num(b.d) + " m is less than the step before (" + num(a.d) + " m): d never decreases");
   }
+  if (!r.steps.empty() && r.steps.front().index != 0)
+    in.fail(item("steps", 0), "field 'step' = " + std::to_string(r.steps.front().index) + ": the first record is step 0, the configuration the run starts from");
   const double last = r.steps.empty() ? 0.0 : r.steps.back().d;
   const double eps = 1e-9 * std::max(1.0, std::abs(last));
   if (r.capacity < 0 || (!r.steps.empty() && r.capacity > last + eps))
     in.fail("results", "field 'capacity' = " + num(r.capacity) + " m is outside [0, the last step's d = " + num(last) + " m]");
+  // The capacity is a d where the structure stands: never beyond the last equilibrium recorded.
+  // A run with none (a structure that does not stand as drawn) stands nowhere past its start:
+  // d = 0, or where PRD was started on another configuration (settings.start.d, `prd --from`).
+  // Without this a file of no steps, or of none settled, passed any capacity to the gate.
+  const StepRecord* eq = nullptr;
+  for (const StepRecord& s : r.steps)
+    if (is_equilibrium(r, s)) eq = &s;
+  if (eq && r.capacity > eq->d + eps)
+    in.fail("results", "field 'capacity' = " + num(r.capacity) + " m is beyond the last equilibrium recorded (step " + std::to_string(eq->index) +
+                           ", d = " + num(eq->d) + " m): the capacity is a d where the structure stands");
+  if (!eq) {
+    const ojson* start = r.settings.is_object() && r.settings.contains("start") ? &r.settings["start"] : nullptr;
+    const double d0 = start && start->is_object() && start->contains("d") && (*start)["d"].is_number() ? (*start)["d"].get<double>() : 0.0;
+    if (std::abs(r.capacity - d0) > 1e-9 * std::max(1.0, std::abs(d0)))
+      in.fail("results", "field 'capacity' = " + num(r.capacity) + " m, but no step is an equilibrium: a run that never stands has the capacity of its start, d = " +
+                             num(d0) + " m");
+  }
   if (has_stable_steps) {
     const StepRecord* at = last_equilibrium(r, r.capacity);
     const int expected = at ? at->index : 0;
@@ -378,12 +397,9 @@ void check_consistency(const Reader& in, const RunResult& r, bool has_stable_ste
 }  // namespace
 
 RunResult parse_results(const std::string& text, const Case& c, const std::string& source) {
-  ojson j;
-  try {
-    j = ojson::parse(text);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(source + ": not JSON: " + e.what());
-  }
+  // A key given twice is refused, as in a case file: nlohmann keeps the last one silently, and a
+  // solver's {"capacity": 0.53, "capacity": 0} went to the gate as 0.
+  const ojson j = parse_document<std::runtime_error, ojson>(text, source);
   Reader in(source, c);
   const std::string w = "results";
   in.only(j, w, {"format",       "units",
@@ -416,7 +432,16 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
   if (stable < 0 || stable > std::numeric_limits<int>::max()) in.fail(w, "field 'stable_steps' must be a step index, 0 or more");
   r.stable_steps = static_cast<int>(stable);
   r.message = in.string(j, w, "message", "");
-  r.total_weight = j.contains("total_weight") ? in.maybe(j["total_weight"], w, "total_weight") : total_weight(c);
+  // Thrusts are compared over the weight, so a weight the file states is checked against the
+  // case's: a file of 1e6 N (the case's blocks weigh 2943 N) let reactions of the wrong sign
+  // pass a thrust limit, and 1e-300 gave differences of 1e288 W.
+  r.total_weight = total_weight(c);
+  if (j.contains("total_weight")) {
+    const double stated = in.number(j["total_weight"], w, "total_weight");
+    if (!(std::abs(stated - r.total_weight) <= 1e-6 * std::abs(r.total_weight)))
+      in.fail(w, "field 'total_weight' = " + num(stated) + " N, but the case's dead loads weigh " + num(r.total_weight) +
+                     " N: a run of another case (or other densities, gravity or loads)");
+  }
   if (j.contains("settings")) {
     if (!j["settings"].is_object()) in.fail(w, "field 'settings' must be a JSON object");
     r.settings = j["settings"];

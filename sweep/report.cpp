@@ -394,7 +394,7 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
     }
     d.table(el);
     if (!how.empty())
-      d.paragraph({"Elasticity: d ln(capacity) / d ln(x), " + how + (m.r2 ? " (R² = " + fmt::g(*m.r2, 3) + ")" : "") +
+      d.paragraph({"Elasticity: d ln(capacity) / d ln(x) (d ln(capacity) / dx, per unit of x, for an option whose fitted values reach 0 or below), " + how + (m.r2 ? " (R² = " + fmt::g(*m.r2, 3) + ")" : "") +
                    "; runs with capacity 0 have no logarithm and are left out of it" +
                    (sens.sampled ? " (the Spearman rank correlation of x and the capacity, over every located sample, keeps them)" : "") +
                    ". One at a time: the least and largest capacity along the option's line, and the x where they occur."});

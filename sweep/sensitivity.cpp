@@ -133,7 +133,13 @@ void grid_elasticity(const SweepPlan& p, const SweepTable& t, const std::vector<
   for (int i : runs)
     if (p.runs[i].values[k].is_number()) numeric.push_back(i);
   if (numeric.size() != runs.size()) return;  // strings or switches: no slope
-  ps.log = all_positive(p, runs, k);
+  // ln(x) where every x that enters the fit is positive: the runs located with a positive
+  // capacity, not every run (a failed run at thickness -0.05 turned the thickness's elasticity
+  // from 5.98 to a slope against x of 38.5 while the four runs fitted were the same).
+  std::vector<int> fitted;
+  for (int i : runs)
+    if (const SweepRow* r = located_row(t, i); r && r->capacity > 0) fitted.push_back(i);
+  ps.log = all_positive(p, fitted, k);
   ps.estimate = std::string("least-squares slope of ln(capacity) against ") + (ps.log ? "ln(x)" : "x") +
                 " along the grid's lines (the other options fixed, each line its own intercept), over the runs with a positive capacity";
   for (int i : runs) {

@@ -76,6 +76,21 @@ TEST(ResultsReader, NonsenseIsRefusedWithOneLineNamingTheFileAndThePath) {
       {[](ojson& j) { j["stable_steps"] = 1000; }, "field 'stable_steps' = 1000, but the last equilibrium at or before the capacity is step 2"},
       {[](ojson& j) { j["collapsed"] = false; }, "field 'collapsed' = false contradicts 'stopped' = \"collapse\""},
       {[](ojson& j) { j["capacty"] = 0.02; }, "results: unknown field 'capacty'"},
+      // A capacity is where the structure stands: no file may claim one past its equilibria
+      // (these passed the gate with any capacity: no steps, none settled, or the start missing).
+      {[](ojson& j) { j["steps"] = ojson::array(); }, "field 'capacity' = 0.02 m, but no step is an equilibrium: a run that never stands has the capacity of its start, d = 0 m"},
+      {[](ojson& j) {
+         for (ojson& s : j["steps"]) s["settled"] = false;
+       },
+       "field 'capacity' = 0.02 m, but no step is an equilibrium"},
+      {[](ojson& j) { j["steps"][2]["settled"] = false; }, "field 'capacity' = 0.02 m is beyond the last equilibrium recorded (step 1, d = 0.01 m)"},
+      {[](ojson& j) {
+         for (ojson& s : j["steps"]) s["step"] = s["step"].get<int>() + 1;
+       },
+       "steps[0]: field 'step' = 1: the first record is step 0"},
+      // The weight thrusts are measured in is the case's: a file's own is checked against it.
+      {[](ojson& j) { j["total_weight"] = 1e6; }, "field 'total_weight' = 1e+06 N, but the case's dead loads weigh 1569.6 N"},
+      {[](ojson& j) { j["total_weight"] = 0; }, "field 'total_weight' = 0 N, but the case's dead loads weigh"},
       {[](ojson& j) { j["steps"][1]["energy_J"] = 1; }, "steps[1]: unknown field 'energy_J'"},
       {[](ojson& j) { j["steps"][1]["reactions"] = ojson::parse(R"([{"support": "block", "force": [0, 1]}])"); },
        "steps[1].reactions[0]: field 'support': block \"block\" is not a support of the case"},
@@ -105,7 +120,14 @@ TEST(ResultsReader, NonsenseIsRefusedWithOneLineNamingTheFileAndThePath) {
     parse_results("{\"format\": ", block(), "x.json");
     ADD_FAILURE() << "read malformed JSON";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("x.json: not JSON"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("x.json:1:12: malformed JSON"), std::string::npos) << e.what();
+  }
+  // A key given twice is refused (nlohmann would keep the last: a capacity of 0 to the gate).
+  try {
+    parse_results(R"({"format": "masonry-results/1", "capacity": 0.5, "capacity": 0})", block(), "x.json");
+    ADD_FAILURE() << "read a key given twice";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("x.json: field 'capacity' given twice"), std::string::npos) << e.what();
   }
 }
 

@@ -78,6 +78,25 @@ TEST(Sensitivity, ArchCapacityGrowsWithThicknessAndIsZeroBelowMilankovitch) {
   EXPECT_FALSE(test::says_nan(md));
 }
 
+// A run that fails (a thickness the generator refuses) enters no fit, so it must not decide how
+// the others are fitted either: its x <= 0 turned the thickness's elasticity (ln on ln) into a
+// slope against x, 38.5 instead of 5.98, with the same four runs fitted.
+TEST(Sensitivity, AFailedRunDoesNotChangeTheOthersElasticity) {
+  test::Scratch d("arch-failed");
+  const std::string head = std::string(R"({"format": "masonry-sweep/1", "name": "arch", "methods": ["prd"],
+    "case": {"generator": "circular-arch", "parameters": {"radius": 1, "voussoirs": 20, "step": 0.002, "max-steps": 300}},
+    "set": {"prd.sliding_check": false}, "vary": {"generator.thickness": )");
+  test::write(d.path / "with.json", head + "[-0.05, 0.11, 0.12, 0.15, 0.2]}}");
+  test::write(d.path / "without.json", head + "[0.11, 0.12, 0.15, 0.2]}}");
+  EXPECT_EQ(sweep(d.path / "with.json", d.path / "with", "", d.path / "err"), 1) << "a failed run is the sweep's exit 1";
+  ASSERT_EQ(sweep(d.path / "without.json", d.path / "without", "", d.path / "err"), 0) << test::read(d.path / "err");
+  const json a = read_json(d.path / "with" / "sensitivity.json")["methods"]["prd"]["parameters"]["generator.thickness"];
+  const json b = read_json(d.path / "without" / "sensitivity.json")["methods"]["prd"]["parameters"]["generator.thickness"];
+  EXPECT_EQ(a["log"], true) << a;
+  EXPECT_EQ(a["n"], 4) << a;
+  EXPECT_EQ(a["elasticity"], b["elasticity"]) << a << "\n" << b;
+}
+
 // The sampled capacities' percentiles, by their definition (linear interpolation between the
 // sorted values at (n - 1) q / 100).
 double percentile(std::vector<double> v, double q) {
