@@ -125,7 +125,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     progress(o.quiet, "compare: PRD on " + c.name + " ...\n");
     RunProgress prd_progress("compare: prd", c.motion.step * c.motion.max_steps, 1.0, {}, path_unit(c));
     results.push_back(run_case(c, Method::prd, {o.out_dir + "/prd", o.quiet ? std::function<void(const RunResult&)>() : std::ref(prd_progress)}));
-    progress(o.quiet, "compare: PRD capacity " + num_text(results.back().capacity) + " m, " + num_text(results.back().timing.total_s) + " s\n");
+    progress(o.quiet, "compare: PRD capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
     runs.push_back({prd_label(results.back().settings.value("hold_closed", nlohmann::json::array())), nullptr, "prd"});
     std::vector<double> phis = o.frictions;
     if (phis.empty()) phis.push_back(c.dem.friction_angle);
@@ -137,7 +137,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       progress(o.quiet, "compare: DEM (friction " + num_text(phi) + " deg) on " + c.name + " ...\n");
       RunProgress dem_progress("compare: dem", dc.motion.step * dc.motion.max_steps, 0.0, dem_step_detail, path_unit(c));
       results.push_back(run_case(dc, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)}));
-      progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " m, " + num_text(results.back().timing.total_s) + " s\n");
+      progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
       runs.push_back({dem_label(phi), nullptr, sub});
     }
   }

@@ -21,14 +21,14 @@ namespace {
 // run. Negative means the held path is carried by a tension there; where the held run's first
 // step also releases less energy than the free run's, no compressive force state can carry it
 // (LP duality), so a no-tension structure leaves that path (dem/README.md, "The branch X").
-void report_held(const RunResult& r) {
+void report_held(const RunResult& r, const std::string& unit) {
   double least = INFINITY, at = 0;
   std::string which;
   for (const StepRecord& s : r.steps)
     for (const HeldCorner& h : s.held_corners)
       if (h.force < least) least = h.force, at = s.d, which = h.corner;
   if (which.empty()) return;
-  std::cerr << "prd: held corners: the least force in the LP's force state is " << least << " N (" << which << ", d = " << at << " m)"
+  std::cerr << "prd: held corners: the least force in the LP's force state is " << least << " N (" << which << ", d = " << at << " " << unit << ")"
             << (least < 0 ? ": negative, the force state pulls there (a tension)" : "") << "\n";
 }
 
@@ -89,10 +89,10 @@ PrdStart start_of(const Case& c, const std::string& path, double d, StartOffsets
   const StepRecord* rec = last_equilibrium(src, at);
   std::ostringstream what;
   if (!rec) {
-    what << path << ": no equilibrium record at or before d = " << at << " m";
+    what << path << ": no equilibrium record at or before d = " << at << " " << path_unit(c);
     throw std::runtime_error(what.str());
   }
-  what << path << ", " << src.method << " record " << rec->index << " (d = " << rec->d << " m)";
+  what << path << ", " << src.method << " record " << rec->index << " (d = " << rec->d << " " << path_unit(c) << ")";
   // A results file need not give poses (an outside solver's); a start needs every block's.
   if (rec->poses.empty()) throw std::runtime_error(what.str() + ": no poses (steps[].poses), which a start needs");
   return {rec->d, rec->poses, offsets, what.str()};
@@ -149,10 +149,10 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                                  << r.timing.total_s << " s (" << r.timing.lp_solves << " LPs); results in " << *dir << "\n";
                      if (r.sliding && r.sliding->any) {
                        std::cerr << "prd: sliding check: some admissible force state avoids sliding at every step for friction angles above "
-                                 << r.sliding->required_friction_angle << " deg (the most demanding: d = " << r.sliding->d << " m, joint "
+                                 << r.sliding->required_friction_angle << " deg (the most demanding: d = " << r.sliding->d << " " << path_unit(c) << ", joint "
                                  << r.sliding->joint << ")\n";
                      }
-                     report_held(r);
+                     report_held(r, path_unit(c));
                      if (*friction >= 0) {
                        // Two answers: where the dual's own forces need more friction than the
                        // angle, and where every admissible force state does (sliding is then
@@ -162,7 +162,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                          std::cerr << "prd: " << (required ? "every admissible force state" : "the dual force state") << " needs more than "
                                    << *friction << " deg of friction ";
                          if (e)
-                           std::cerr << "first at step " << e->step << ", d = " << e->d << " m, joint " << e->blocks << " (" << e->angle << " deg)\n";
+                           std::cerr << "first at step " << e->step << ", d = " << e->d << " " << path_unit(c) << ", joint " << e->blocks << " (" << e->angle << " deg)\n";
                          else
                            std::cerr << "at no step\n";
                        }

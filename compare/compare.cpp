@@ -625,16 +625,16 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
     const double limit = std::max(t.capacity_abs.value_or(0.0), t.capacity.value_or(0.0) * std::abs(k.a.capacity));
     std::string limits;
     if (t.capacity) limits = fmt(*t.capacity * 100, 3) + "%";
-    if (t.capacity_abs) limits += (limits.empty() ? "" : " or ") + fmt(*t.capacity_abs) + " m";
+    if (t.capacity_abs) limits += (limits.empty() ? "" : " or ") + fmt(*t.capacity_abs) + " " + k.d_unit;
     if (!std::isfinite(diff) || diff > limit)
-      out.push_back("capacity: " + k.a.label + " " + fmt(k.a.capacity) + " m, " + k.b.label + " " + fmt(k.b.capacity) + " m: difference " +
-                    fmt(diff) + " m, relative " + fmt(std::abs(k.capacity_rel_diff) * 100, 3) + "% > limit " + limits);
+      out.push_back("capacity: " + k.a.label + " " + fmt(k.a.capacity) + " " + k.d_unit + ", " + k.b.label + " " + fmt(k.b.capacity) + " " + k.d_unit +
+                    ": difference " + fmt(diff) + " " + k.d_unit + ", relative " + fmt(std::abs(k.capacity_rel_diff) * 100, 3) + "% > limit " + limits);
   }
   if (t.thrust && k.thrust_skipped.empty()) {
     const double m = k.thrust_max_diff;
     if (!std::isfinite(m) || m > *t.thrust)
       out.push_back("thrust: largest support reaction difference " + fmt(m, 3) + " W (" + k.thrust_max_where + " at d = " + fmt(k.thrust_max_d) +
-                    " m) > limit " + fmt(*t.thrust, 3) + " W");
+                    " " + k.d_unit + ") > limit " + fmt(*t.thrust, 3) + " W");
   }
   const auto motion_violation = [&](const MotionCheck& m, const std::string& key, double limit) {
     std::string most;
@@ -672,7 +672,7 @@ std::vector<std::string> check_tolerances(const Comparison& k, const Tolerances&
           if (x.apart < 0 || x.apart > t.hinge_shift) l += (l.empty() ? "" : ", ") + x.label + " (" + fmt(x.opening * 1e3, 2) + " mm)";
         return l;
       };
-      out.push_back("hinges: at d = " + fmt(h.d) + " m only " + k.a.label + " has {" + alone(h.a) + "}, only " + k.b.label + " has {" + alone(h.b) +
+      out.push_back("hinges: at d = " + fmt(h.d) + " " + k.d_unit + " only " + k.a.label + " has {" + alone(h.a) + "}, only " + k.b.label + " has {" + alone(h.b) +
                     "}" + why);
     }
   }

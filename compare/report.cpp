@@ -291,7 +291,7 @@ void tolerance_section(Document& d, const Report& r) {
   if (!r.tolerances_checked) return;
   d.heading(2, {"Tolerance checks"});
   std::string capacity = r.tolerances.capacity ? fmt::g(*r.tolerances.capacity * 100) + "%" : std::string();
-  if (r.tolerances.capacity_abs) capacity += (capacity.empty() ? "" : " or ") + fmt::mm(*r.tolerances.capacity_abs, 1) + " mm";
+  if (r.tolerances.capacity_abs) capacity += (capacity.empty() ? "" : " or ") + fmt::mm(*r.tolerances.capacity_abs, 1) + " " + d_unit(r);
   d.paragraph({"Limits: capacity " + (capacity.empty() ? std::string("not checked") : capacity) + ", thrust " +
                (r.tolerances.thrust ? fmt::g(*r.tolerances.thrust) + " W" : std::string("not checked")) + ", mechanism agreement " +
                (r.tolerances.mechanism ? "at least " + fmt::g(*r.tolerances.mechanism) : std::string("not checked")) +

@@ -268,7 +268,7 @@ std::string csv_field(const std::string& s) {
 std::string steps_csv(const RunResult& r, const Case& c) {
   std::ostringstream o;
   o.precision(12);
-  o << "step,d_m,energy_J,open_corners,cracked_joints";
+  o << "step,d_" << path_unit(c) << ",energy_J,open_corners,cracked_joints";  // d_rad where the supports only turn
   for (const Block& b : c.blocks)
     if (b.support) o << "," << csv_field("Fx_" + b.id + "_N") << "," << csv_field("Fy_" + b.id + "_N");
   o << "\n";

@@ -352,19 +352,20 @@ std::optional<SlidingSummary> read_sliding(const Reader& in, const ojson& x) {
 // The checks that need the whole file: the steps run forward, the capacity and stable_steps are
 // those of the steps, and the status agrees with `collapsed`.
 void check_consistency(const Reader& in, const RunResult& r, bool has_stable_steps, bool has_collapsed) {
+  const std::string u = path_unit(in.c);  // d's unit: rad where every moving support only turns
   for (size_t k = 1; k < r.steps.size(); ++k) {
     const StepRecord &a = r.steps[k - 1], &b = r.steps[k];
     if (b.index != a.index + 1)
       in.fail(item("steps", k),
               "field 'step' = " + std::to_string(b.index) + " after " + std::to_string(a.index) + ": step indices must be consecutive");
-    if (b.d < a.d) in.fail(item("steps", k), "field 'd' = " + num(b.d) + " m is less than the step before (" + num(a.d) + " m): d never decreases");
+    if (b.d < a.d) in.fail(item("steps", k), "field 'd' = " + num(b.d) + " " + u + " is less than the step before (" + num(a.d) + " " + u + "): d never decreases");
   }
   if (!r.steps.empty() && r.steps.front().index != 0)
     in.fail(item("steps", 0), "field 'step' = " + std::to_string(r.steps.front().index) + ": the first record is step 0, the configuration the run starts from");
   const double last = r.steps.empty() ? 0.0 : r.steps.back().d;
   const double eps = 1e-9 * std::max(1.0, std::abs(last));
   if (r.capacity < 0 || (!r.steps.empty() && r.capacity > last + eps))
-    in.fail("results", "field 'capacity' = " + num(r.capacity) + " m is outside [0, the last step's d = " + num(last) + " m]");
+    in.fail("results", "field 'capacity' = " + num(r.capacity) + " " + u + " is outside [0, the last step's d = " + num(last) + " " + u + "]");
   // The capacity is a d where the structure stands: never beyond the last equilibrium recorded.
   // A run with none (a structure that does not stand as drawn) stands nowhere past its start:
   // d = 0, or where PRD was started on another configuration (settings.start.d, `prd --from`).
@@ -373,14 +374,14 @@ void check_consistency(const Reader& in, const RunResult& r, bool has_stable_ste
   for (const StepRecord& s : r.steps)
     if (is_equilibrium(r, s)) eq = &s;
   if (eq && r.capacity > eq->d + eps)
-    in.fail("results", "field 'capacity' = " + num(r.capacity) + " m is beyond the last equilibrium recorded (step " + std::to_string(eq->index) +
-                           ", d = " + num(eq->d) + " m): the capacity is a d where the structure stands");
+    in.fail("results", "field 'capacity' = " + num(r.capacity) + " " + u + " is beyond the last equilibrium recorded (step " + std::to_string(eq->index) +
+                           ", d = " + num(eq->d) + " " + u + "): the capacity is a d where the structure stands");
   if (!eq) {
     const ojson* start = r.settings.is_object() && r.settings.contains("start") ? &r.settings["start"] : nullptr;
     const double d0 = start && start->is_object() && start->contains("d") && (*start)["d"].is_number() ? (*start)["d"].get<double>() : 0.0;
     if (std::abs(r.capacity - d0) > 1e-9 * std::max(1.0, std::abs(d0)))
-      in.fail("results", "field 'capacity' = " + num(r.capacity) + " m, but no step is an equilibrium: a run that never stands has the capacity of its start, d = " +
-                             num(d0) + " m");
+      in.fail("results", "field 'capacity' = " + num(r.capacity) + " " + u + ", but no step is an equilibrium: a run that never stands has the capacity of its start, d = " +
+                             num(d0) + " " + u);
   }
   if (has_stable_steps) {
     const StepRecord* at = last_equilibrium(r, r.capacity);

@@ -444,7 +444,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
       const Solved sv = solve_here(w);
       if (sv.status == LpStatus::infeasible) {
         r.status = RunStatus::error;
-        r.message = "d = " + std::to_string(w.cur.d) + " m: the LP is infeasible: the prescribed motion cannot be accommodated without a corner penetrating or a closed corner sliding";
+        r.message = "d = " + std::to_string(w.cur.d) + " " + path_unit(c) + ": the LP is infeasible: the prescribed motion cannot be accommodated without a corner penetrating or a closed corner sliding";
         break;
       }
       if (event_behind(w, sv)) {

@@ -141,7 +141,7 @@ ojson sweep_json(const SweepPlan& p, const SweepTable& t, const SweepSummary& s)
   ojson j;
   j["format"] = "masonry-sweep-results/1";
   j["version"] = version_text();
-  j["units"] = "SI: capacity in m (the last stable d), time in s; friction angles in degrees";
+  j["units"] = "SI: capacity in " + path_unit(p.base) + " (the last stable d), time in s; friction angles in degrees";
   j["name"] = p.name;
   j["spec"] = p.source;
   j["case"] = p.base.name;

@@ -338,7 +338,7 @@ ojson sensitivity_json(const SweepPlan& p, const SweepSensitivity& s) {
   ojson j;
   j["format"] = "masonry-sensitivity/1";
   j["units"] =
-      "SI: capacity in m (the last stable d); elasticities d ln(capacity) / d ln(x), dimensionless (d ln(capacity) / dx, 1/unit of x, where log is "
+      "SI: capacity in " + path_unit(p.base) + " (the last stable d); elasticities d ln(capacity) / d ln(x), dimensionless (d ln(capacity) / dx, 1/unit of x, where log is "
       "false)";
   j["name"] = p.name;
   j["spec"] = p.source;

@@ -221,11 +221,13 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
     if (on_row) on_row(row);
     rows.push_back(std::move(row));
   };
-  const auto unit_of = [&]() -> std::string {
+  const auto unit_of = [&](Method m) -> std::string {
     // std::string(...), not a literal: GCC 12 warns falsely on these assignments (PR105651).
     if (b.quantity == Quantity::threshold && b.search->parameter.find("friction_angle") != std::string::npos) return std::string("deg");
     if (b.quantity == Quantity::threshold && b.search->parameter == "thickness") return std::string("m");
     if (b.quantity == Quantity::reaction && b.component == "moment") return std::string("N m");
+    // A capacity is in d's unit: rad where every moving support only turns (a tilting slab).
+    if (b.quantity == Quantity::capacity) return path_unit(benchmark_case(cat, b, m));
     return quantity_unit(b.quantity);
   };
   bool judged = false;
@@ -237,7 +239,7 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
     row.benchmark = &b;
     row.method = mr.method;
     row.method_label = solver ? solver->name : method_name(mr.method);
-    row.unit = unit_of();
+    row.unit = unit_of(mr.method);
     const Expected& x = mr.expected ? *mr.expected : b.expected;
     row.expected_from = mr.expected ? mr.source : b.source;
     bool have_expected = true;
@@ -273,7 +275,7 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
     row.benchmark = &b;
     row.method = solver->as;
     row.method_label = solver->name;
-    row.unit = unit_of();
+    row.unit = unit_of(solver->as);
     row.applicable = false;
     row.expected_from = b.source;
     row.note = "the catalogue judges only " + methods_of(b) + " here (no " + method_name(solver->as) + " tolerance)";

@@ -65,12 +65,12 @@ TEST(ResultsReader, NonsenseIsRefusedWithOneLineNamingTheFileAndThePath) {
       {[](ojson& j) { j.erase("method"); }, "field 'method' is required"},
       {[](ojson& j) { j["method"] = ""; }, "field 'method' must name the method"},
       {[](ojson& j) { j["format"] = "masonry-results/2"; }, "field 'format' must be \"masonry-results/1\""},
-      {[](ojson& j) { j["capacity"] = -5; }, "field 'capacity' = -5 m is outside [0, the last step's d = 0.02 m]"},
-      {[](ojson& j) { j["capacity"] = 1e300; }, "field 'capacity' = 1e+300 m is outside"},
+      {[](ojson& j) { j["capacity"] = -5; }, "field 'capacity' = -5 rad is outside [0, the last step's d = 0.02 rad]"},
+      {[](ojson& j) { j["capacity"] = 1e300; }, "field 'capacity' = 1e+300 rad is outside"},
       {[](ojson& j) { j["capacity"] = nullptr; }, "field 'capacity' must be a number"},
       {[](ojson& j) { j["capacity"] = "0.02"; }, "field 'capacity' must be a number"},
       {[](ojson& j) { j["stopped"] = "xyz"; }, "field 'stopped' = \"xyz\" is not a run status"},
-      {[](ojson& j) { std::swap(j["steps"][0]["d"], j["steps"][2]["d"]); }, "steps[1]: field 'd' = 0.01 m is less than the step before (0.02 m)"},
+      {[](ojson& j) { std::swap(j["steps"][0]["d"], j["steps"][2]["d"]); }, "steps[1]: field 'd' = 0.01 rad is less than the step before (0.02 rad)"},
       {[](ojson& j) { j["steps"][2]["step"] = 1; }, "steps[2]: field 'step' = 1 after 1: step indices must be consecutive"},
       {[](ojson& j) { j["steps"][1].erase("d"); }, "steps[1]: field 'd' is required"},
       {[](ojson& j) { j["stable_steps"] = 1000; }, "field 'stable_steps' = 1000, but the last equilibrium at or before the capacity is step 2"},
@@ -78,12 +78,12 @@ TEST(ResultsReader, NonsenseIsRefusedWithOneLineNamingTheFileAndThePath) {
       {[](ojson& j) { j["capacty"] = 0.02; }, "results: unknown field 'capacty'"},
       // A capacity is where the structure stands: no file may claim one past its equilibria
       // (these passed the gate with any capacity: no steps, none settled, or the start missing).
-      {[](ojson& j) { j["steps"] = ojson::array(); }, "field 'capacity' = 0.02 m, but no step is an equilibrium: a run that never stands has the capacity of its start, d = 0 m"},
+      {[](ojson& j) { j["steps"] = ojson::array(); }, "field 'capacity' = 0.02 rad, but no step is an equilibrium: a run that never stands has the capacity of its start, d = 0 rad"},
       {[](ojson& j) {
          for (ojson& s : j["steps"]) s["settled"] = false;
        },
-       "field 'capacity' = 0.02 m, but no step is an equilibrium"},
-      {[](ojson& j) { j["steps"][2]["settled"] = false; }, "field 'capacity' = 0.02 m is beyond the last equilibrium recorded (step 1, d = 0.01 m)"},
+       "field 'capacity' = 0.02 rad, but no step is an equilibrium"},
+      {[](ojson& j) { j["steps"][2]["settled"] = false; }, "field 'capacity' = 0.02 rad is beyond the last equilibrium recorded (step 1, d = 0.01 rad)"},
       {[](ojson& j) {
          for (ojson& s : j["steps"]) s["step"] = s["step"].get<int>() + 1;
        },

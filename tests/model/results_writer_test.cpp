@@ -69,6 +69,10 @@ TEST(StepsCsv, OneColumnCountWhateverTheIds) {
     EXPECT_EQ(rows[0][6 + 2 * i], "Fy_" + ids[i] + "_N");
     EXPECT_EQ(std::stod(rows[2][6 + 2 * i]), -2.0 * static_cast<double>(i));
   }
+  EXPECT_EQ(rows[0][1], "d_m");
+  // d's column is named in d's unit: rad on a slab that only turns.
+  const Case tilt = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json");
+  EXPECT_EQ(rfc4180(steps_csv(RunResult{}, tilt))[0][1], "d_rad");
   // A run without a step (a structure that does not stand as drawn) has the same header.
   r.steps.clear();
   const auto empty = rfc4180(steps_csv(r, c));

@@ -58,7 +58,7 @@ TEST(ValidateSolver, TheExampleSolverPassesAndACopyTenPercentOffFails) {
   const Outcome wrong =
       validate(dir, "--solver '" + kPython + " " + kSource + "/tests/validate/wrong_toppling_solver.py {case} {out}' --solver-name wrong-py" + only);
   EXPECT_EQ(wrong.rc, 1) << wrong.out << wrong.err;
-  EXPECT_NE(wrong.out.find("FAIL block-topples (wrong-py): expected capacity 0.463648 +- 0.001 m"), std::string::npos) << wrong.out;
+  EXPECT_NE(wrong.out.find("FAIL block-topples (wrong-py): expected capacity 0.463648 +- 0.001 rad"), std::string::npos) << wrong.out;
   EXPECT_NE(wrong.out.find("obtained 0.5093"), std::string::npos) << wrong.out;  // 1.1 x its 0.463
   // Its files are kept for the failure, and named.
   EXPECT_NE(wrong.out.find("The solver's runs (case.json, out/, solver.log): "), std::string::npos) << wrong.out;
@@ -85,7 +85,7 @@ TEST(ValidateSolver, ASolverThatFailsGivesAnErrorRowWithTheReason) {
        "results.json: results: field 'capacity' is required"},
       {writes("b.json", R"j({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0.5, "stopped": "collapse",
                             "steps": [{"step": 0, "d": 0}, {"step": 1, "d": 0.1}]})j"),
-       "results.json: results: field 'capacity' = 0.5 m is outside [0, the last step's d = 0.1 m]"},
+       "results.json: results: field 'capacity' = 0.5 rad is outside [0, the last step's d = 0.1 rad]"},
       {writes("c.json", R"j({"format": "masonry-results/1", "method": "x", "case": "tilting block (b = 0.2 m, h = 0.4 m)", "capacity": 0,
                             "stopped": "collapse", "steps": [{"step": 0, "d": 0, "reactions": [{"support": "block", "force": [0, 1]}]}]})j"),
        "results.json: steps[0].reactions[0]: field 'support': block \"block\" is not a support of the case"},
