@@ -369,6 +369,30 @@ std::vector<int> mirror_blocks(const Case& c) {
     }
     if (m[a] < 0) return {};
   }
+  // The mirror image of a mechanism is the same answer only where the supports' motion is its
+  // own mirror image too, up to one translation of the whole scene (which moves no joint and,
+  // under gravity, changes the work of every mechanism alike): one support spreading outwards is
+  // the other spreading (the paper's Remark 3), but the right support settling is not the left
+  // one settling, and a slab tilting one way is not one tilting the other. Per support, its
+  // rotation and the velocity of its centroid per unit of d, against its mirror's mirrored.
+  std::vector<double> rot(c.blocks.size(), 0.0);
+  std::vector<Vec2> vel(c.blocks.size(), Vec2(0, 0));
+  std::vector<Vec2> cen(c.blocks.size());
+  for (size_t b = 0; b < c.blocks.size(); ++b) cen[b] = centroid(c.blocks[b].vertices);
+  for (const SupportMotion& s : c.motion.supports) {
+    const size_t b = size_t(s.block);
+    rot[b] = s.rotation;
+    vel[b] = s.translation + s.rotation * perp(cen[b] - s.about);
+  }
+  std::optional<Vec2> common;
+  for (size_t b = 0; b < c.blocks.size(); ++b) {
+    if (!c.blocks[b].support) continue;
+    const size_t o = size_t(m[b]);
+    if (std::abs(-rot[o] - rot[b]) > 1e-9 * (1 + std::abs(rot[b]))) return {};
+    const Vec2 diff = Vec2(-vel[o].x(), vel[o].y()) - vel[b];
+    if (!common) common = diff;
+    if ((diff - *common).norm() > 1e-9 * (1 + vel[b].norm())) return {};
+  }
   return m;
 }
 
