@@ -728,12 +728,15 @@ Tolerances parse_tolerances(const std::string& text, const std::string& source) 
         throw std::runtime_error(source + ": \"hinge_shift\" must be a whole number of joints from 0 to " + std::to_string(kMaxHingeShift));
       t.hinge_shift = int(v.get<long long>());
     } else if (key == "comment" || key == "description") {
-      // free text for people
+      if (!v.is_string()) throw std::runtime_error(source + ": \"" + key + "\" must be text (a note for people)");
     } else {
       throw std::runtime_error(source + ": unknown key \"" + key +
                                "\" (known: capacity, capacity_abs, thrust, mechanism, collapse_mechanism, hinges, hinge_shift, comment)");
     }
   }
+  // A gate that checks nothing passes everything: {} (or a comment alone) was a PASS.
+  if (!t.capacity && !t.capacity_abs && !t.thrust && !t.mechanism && !t.collapse_mechanism && !t.hinges)
+    throw std::runtime_error(source + ": sets no limit (give at least one of capacity, capacity_abs, thrust, mechanism, collapse_mechanism, or hinges: true)");
   return t;
 }
 

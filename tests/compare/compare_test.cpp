@@ -528,6 +528,11 @@ TEST(Compare, ToleranceFileIsStrict) {
   EXPECT_THROW(parse_tolerances(R"({"hinges": 1})", "t.json"), std::runtime_error);
   // A key given twice: nlohmann would keep the last, so the order of two limits decided the gate.
   EXPECT_THROW(parse_tolerances(R"({"capacity": 0.5, "capacity": 0.001})", "t.json"), std::runtime_error);
+  // A file that checks nothing would pass everything.
+  EXPECT_THROW(parse_tolerances(R"({})", "t.json"), std::runtime_error);
+  EXPECT_THROW(parse_tolerances(R"({"comment": "mine", "hinges": false})", "t.json"), std::runtime_error);
+  EXPECT_THROW(parse_tolerances(R"({"comment": 5, "thrust": 0.1})", "t.json"), std::runtime_error);
+  EXPECT_NO_THROW(parse_tolerances(R"({"comment": "mine", "hinges": true})", "t.json"));
   const Tolerances t = parse_tolerances(R"({"capacity": 0.05, "capacity_abs": 0.002, "thrust": 0.1, "hinges": true})", "t.json");
   EXPECT_EQ(*t.capacity, 0.05);
   EXPECT_EQ(*t.capacity_abs, 0.002);
