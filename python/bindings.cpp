@@ -293,11 +293,17 @@ py::dict run_sweep_file(const std::string& spec, const std::string& dir, int job
   return out;
 }
 
-// `masonry cases wall`: its parameters are words and lists as well as numbers, so they have a
-// table of their own (cases/wall_fields.hpp), read here as the command line reads it.
-Case wall_case(const nlohmann::json& values) {
-  const Case c = brick_wall(wall_parameters(values, "generate('wall')"));
-  return parse_case(case_to_json(c), "generator wall");  // the file `masonry cases wall` writes must load: so must this
+// The case `masonry cases NAME --out FILE` writes, as the loader reads that file back. The
+// command line refuses to write a case its loader would refuse (app/cases_commands.cpp, emit): a
+// generator checks its geometry, not the loader's ranges, so radius=1e6 or step=10 built a case
+// that ran here and that no case file can hold. Through the loader, the same refusal with the
+// same message (the source "generator NAME" where the command line names its file), and the
+// case the command line's file gives. `masonry cases wall` has parameters that are words and
+// lists as well as numbers: a table of its own (cases/wall_fields.hpp), read as the command line
+// reads it.
+Case generated_case(const std::string& name, const nlohmann::json& values) {
+  const Case c = name == "wall" ? brick_wall(wall_parameters(values, "generate('wall')")) : generate_case(name, values);
+  return parse_case(case_to_json(c), "generator " + name);
 }
 
 py::list generator_list() {
@@ -343,6 +349,9 @@ PYBIND11_MODULE(_masonry, m) {
     }
   });
 
+  // Every CaseData is one the loader made (parse_case, load_case, generate, with_option; a
+  // Result's is the case it ran), and it has no constructor of its own: a run given no settings
+  // runs it as it is, so a case the loader would refuse must never become one.
   py::class_<Case>(m, "CaseData", "A case as the loader validated it (masonry.Case wraps it)")
       .def_readonly("name", &Case::name)
       .def_readonly("source", &Case::source)
@@ -353,10 +362,7 @@ PYBIND11_MODULE(_masonry, m) {
       .def("d_unit", &path_unit);
   m.def("parse_case", &parse_case, py::arg("text"), py::arg("source"));
   m.def("load_case", &load_case, py::arg("path"));
-  m.def("generate", [](const std::string& name, const std::string& values_json) {
-    const nlohmann::json values = nlohmann::json::parse(values_json);
-    return name == "wall" ? wall_case(values) : generate_case(name, values);
-  });
+  m.def("generate", [](const std::string& name, const std::string& values_json) { return generated_case(name, nlohmann::json::parse(values_json)); });
   m.def("generators", &generator_list);
 
   py::class_<PyResult>(m, "Result", "One run's results and its case (masonry.run_prd, masonry.run_dem)")

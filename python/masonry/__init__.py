@@ -162,7 +162,8 @@ def generators():
 
 
 def generate(name, **parameters):
-    """The case `masonry cases NAME --out FILE --PARAM VALUE ...` writes; a parameter's '-' is '_' here."""
+    """The case `masonry cases NAME --out FILE --PARAM VALUE ...` writes, as the loader reads it back
+    (what it refuses raises MasonryError); a parameter's '-' is '_' here."""
     return Case(_masonry.generate(name, _dumps({k.replace("_", "-"): v for k, v in parameters.items()})))
 
 

@@ -210,6 +210,21 @@ class Generators(unittest.TestCase):
         self.assertEqual(len(case.blocks), 11)  # 9 voussoirs and two supports
         self.assertEqual(case.blocks[1]["vertices"].shape[1], 2)
 
+    def test_generate_refuses_what_the_command_line_refuses(self):
+        # A generator checks its geometry, not the loader's ranges: these built cases that ran
+        # from Python and that `masonry cases` refuses to write (exit 2, the loader's message).
+        for param, value, text in [("radius", 1e6, "1e6"), ("step", 10.0, "10"), ("step", 1e-12, "1e-12"), ("density", 1e6, "1e6"),
+                                   ("max_steps", 2e8, "200000000"), ("depth", 1e6, "1e6")]:
+            with self.assertRaises(masonry.MasonryError) as e:
+                masonry.generate("circular-arch", **{param: value})
+            with tempfile.TemporaryDirectory() as tmp:
+                path = os.path.join(tmp, "x.json")
+                done = subprocess.run([EXE, "cases", "circular-arch", "--out", path, "--" + param.replace("_", "-"), text],
+                                      capture_output=True, text=True)
+            self.assertEqual(done.returncode, 2)
+            # The same message, naming the generator where the command line names its file.
+            self.assertEqual(str(e.exception), done.stderr.strip().replace("masonry cases: " + path, "generator circular-arch"))
+
     def test_the_wall_generator_equals_the_command_line(self):
         # Its parameters are words and lists as well as numbers (cases/wall_fields.hpp), read by their names.
         case = masonry.generate("wall", courses=12, bricks=8, bond="stack", opening=["0.75,0.25,0.5,0.5,arch"], moving="left")
