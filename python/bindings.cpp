@@ -220,7 +220,7 @@ py::list blocks_list(const Case& c) {
 
 // The comparison of two runs of case c: `masonry compare --runs A B [--tolerances FILE]`'s
 // comparison.json (without PRD on the DEM's deformed configuration, which reruns PRD), and with
-// `dir` its report too.
+// `dir` its report too. A run of another case is refused as the command line refuses it.
 py::object compare_two(const Case& c, const PyResult& a, const PyResult& b, const std::string& tolerances, const std::string& source,
                        const std::string& dir) {
   std::optional<Tolerances> tol;
@@ -230,9 +230,17 @@ py::object compare_two(const Case& c, const PyResult& a, const PyResult& b, cons
       return "DEM phi=" + number_text(r.settings["friction_angle"].get<double>());
     return method_label(r);
   };
-  std::string la = label(a.run), lb = label(b.run);
+  // Each run as `masonry compare --runs` reads it: its results.json read against case c
+  // (load_results), whose checks refuse a run of another case (its blocks, supports or joints are
+  // not c's). Without them a tilting block's run in rad was compared with an arch's in m, and two
+  // runs were judged against a case they did not run.
+  const auto read = [&](const PyResult& p, const std::string& which) {
+    return parse_results(to_json(p.run, p.c).dump(1), c, "run " + which + " (" + p.run.method + " of case '" + printable(p.c.name) + "')");
+  };
+  const RunResult ra = read(a, "a"), rb = read(b, "b");
+  std::string la = label(ra), lb = label(rb);
   if (la == lb) la += " a", lb += " b";
-  const Report rep = make_report(c, {{la, &a.run, ""}, {lb, &b.run, ""}}, tol ? &*tol : nullptr);
+  const Report rep = make_report(c, {{la, &ra, ""}, {lb, &rb, ""}}, tol ? &*tol : nullptr);
   if (!dir.empty()) write_report(dir, rep);
   nlohmann::ordered_json j = report_json(rep);
   j["pass"] = rep.violations[0].empty();

@@ -219,7 +219,8 @@ def compare(a, b, *more, tolerances=None, out=None):
     """Compares two runs of one case as `masonry compare --runs A B [--tolerances FILE]` does:
     compare(a, b) or compare(case, a, b). Returns comparison.json as a dict, with "pass" and
     "violations" (the limits exceeded, one line each) at the top. tolerances: a dict
-    ({"capacity": 0.05, "thrust": 0.1, "hinges": True}) or a file; out=DIR also writes the report."""
+    ({"capacity": 0.05, "thrust": 0.1, "hinges": True}) or a file; out=DIR also writes the report.
+    A run of another case raises MasonryError, as the command line refuses its results.json."""
     if isinstance(a, Case):
         if len(more) != 1:
             raise TypeError("masonry.compare(case, a, b) or compare(a, b)")

@@ -143,6 +143,24 @@ class TiltingBlock(unittest.TestCase):
         self.assertEqual(len(k["violations"]), 1)
         self.assertIn("capacity", k["violations"][0])
 
+    def test_compare_refuses_runs_of_another_case(self):
+        # As `masonry compare --runs` does: each run is read against the case compared (an arch's
+        # run, d in m, was compared with the tilting block's, d in rad, and could pass).
+        arch = masonry.run_prd(masonry.generate("circular-arch"), max_steps=1)
+        with tempfile.TemporaryDirectory() as tmp:
+            self.prd.save(os.path.join(tmp, "tb"))
+            arch.save(os.path.join(tmp, "arch"))
+            done = subprocess.run([EXE, "compare", TILT, "--runs", os.path.join(tmp, "tb"), os.path.join(tmp, "arch"), "--out",
+                                   os.path.join(tmp, "cmp")], capture_output=True, text=True)
+        self.assertEqual(done.returncode, 2)
+        reason = done.stderr.strip().split("results.json: ", 1)[1]  # "blocks: 22 blocks, the case has 2"
+        with self.assertRaises(masonry.MasonryError) as e:
+            masonry.compare(self.prd, arch)
+        self.assertEqual(str(e.exception), f"run b (prd of case '{arch.case.name}'): {reason}")
+        for args in [(self.case, self.prd, arch), (arch.case, self.prd, self.prd)]:
+            with self.assertRaisesRegex(masonry.MasonryError, "blocks: "):
+                masonry.compare(*args)
+
 
 class PointedArch(unittest.TestCase):
     def test_capacity_and_every_d_equal_the_command_line(self):
