@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "app/suggest.hpp"
 #include "cases/generators.hpp"
 #include "cases/parameters.hpp"
 #include "cases/wall_fields.hpp"
@@ -310,6 +311,15 @@ py::dict run_sweep_file(const std::string& spec, const std::string& dir, int job
 // lists as well as numbers: a table of its own (cases/wall_fields.hpp), read as the command line
 // reads it.
 Case generated_case(const std::string& name, const nlohmann::json& values) {
+  if (name != "wall" && !find_case_generator(name)) {
+    // As `masonry cases wal` does: the nearest name, by the command line's rule (app/suggest.hpp).
+    std::vector<std::string> names;
+    for (const CaseGenerator& g : case_generators()) names.push_back(g.name);
+    names.push_back("wall");
+    const std::string best = nearest_name(name, names);
+    throw CaseError("no case generator '" + printable(name) + "'" + (best.empty() ? "" : "; did you mean '" + best + "'?") +
+                    " (masonry.generators(), and 'wall')");
+  }
   const Case c = name == "wall" ? brick_wall(wall_parameters(values, "generate('wall')")) : generate_case(name, values);
   return parse_case(case_to_json(c), "generator " + name);
 }

@@ -243,6 +243,19 @@ class Generators(unittest.TestCase):
             # The same message, naming the generator where the command line names its file.
             self.assertEqual(str(e.exception), done.stderr.strip().replace("masonry cases: " + path, "generator circular-arch"))
 
+    def test_a_mistyped_generator_gets_the_command_lines_suggestion(self):
+        for typed, meant in [("wal", "wall"), ("circular-ach", "circular-arch")]:
+            with self.assertRaises(masonry.MasonryError) as e:
+                masonry.generate(typed)
+            hint = f"did you mean '{meant}'?"
+            self.assertIn(hint, str(e.exception))
+            with tempfile.TemporaryDirectory() as tmp:
+                done = subprocess.run([EXE, "cases", typed, "--out", os.path.join(tmp, "x.json")], capture_output=True, text=True)
+            self.assertIn(hint, done.stderr)
+        with self.assertRaises(masonry.MasonryError) as e:
+            masonry.generate("colonnade")
+        self.assertNotIn("did you mean", str(e.exception))
+
     def test_the_wall_generator_equals_the_command_line(self):
         # Its parameters are words and lists as well as numbers (cases/wall_fields.hpp), read by their names.
         case = masonry.generate("wall", courses=12, bricks=8, bond="stack", opening=["0.75,0.25,0.5,0.5,arch"], moving="left")
