@@ -33,6 +33,7 @@ out=DIR they are on disk too.
 """
 
 import json as _json
+import math as _math
 import os as _os
 
 from . import _masonry
@@ -63,6 +64,45 @@ def _dumps(value):
     return _json.dumps(value, default=_plain, allow_nan=False)
 
 
+def _nonfinite(value, path=()):
+    """The first number in `value` that is nan or infinite, and where it sits (keys and indexes), or None."""
+    if hasattr(value, "tolist"):
+        value = value.tolist()
+    if isinstance(value, float):
+        return None if _math.isfinite(value) else (value, path)
+    items = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, (list, tuple)) else ()
+    for key, item in items:
+        found = _nonfinite(item, path + (key,))
+        if found:
+            return found
+    return None
+
+
+def _json_text(value, where):
+    """`value` as JSON text for the loader. JSON has no nan or inf, so the loader never sees one
+    (json.dumps raised a ValueError naming nothing): a nan or inf (1e400 is inf) raises
+    MasonryError instead, "WHERE = nan must be a finite number", where(path) naming the field as
+    the loader's messages do."""
+    found = _nonfinite(value)
+    if found:
+        raise MasonryError(f"{where(found[1])} = {found[0]!r} must be a finite number")
+    return _dumps(value)
+
+
+def _option_json(source, key, value):
+    """An option's value as JSON text, a nan refused as the loader words its refusals."""
+    section, _, name = key.rpartition(".")
+    return _json_text(value, lambda path: f"{source} [{key}={value!r}]: {section or 'case'}: field '{name}'")
+
+
+def _block_field(blocks, path):
+    """ "block 'ID': field 'vertices'": the field at `path` in a list of blocks, as the loader names it."""
+    block = blocks[path[0]]
+    bid = block.get("id") if isinstance(block, dict) else None
+    who = f"block '{bid}'" if isinstance(bid, str) and bid else f"block #{path[0]}"
+    return f"{who}: field '{path[1]}'" if len(path) > 1 else who
+
+
 class Case:
     """A case as the loader validated it (masonry-case/1). Every change goes through the loader again.
 
@@ -81,10 +121,12 @@ class Case:
     def _doc(self):
         return _json.loads(self._c.to_json())
 
-    def _replace(self, section, value):
+    def _replace(self, section, value, where):
+        """The case with doc[section] = value, through the loader; where(value, path) names the
+        field at `path` within value for a nan's message (the rest of the document is the loader's)."""
         doc = self._doc()
         doc[section] = value
-        self._c = _masonry.parse_case(_dumps(doc), self._c.source)
+        self._c = _masonry.parse_case(_json_text(doc, lambda path: f"{self.source}: {where(value, path[1:])}"), self._c.source)
 
     @property
     def name(self):
@@ -106,7 +148,7 @@ class Case:
 
     @blocks.setter
     def blocks(self, blocks):
-        self._replace("blocks", [{k: v for k, v in b.items() if not (k == "density" and b.get("support"))} for b in blocks])
+        self._replace("blocks", [{k: v for k, v in b.items() if not (k == "density" and b.get("support"))} for b in blocks], _block_field)
 
     @property
     def motion(self):
@@ -114,7 +156,7 @@ class Case:
 
     @motion.setter
     def motion(self, motion):
-        self._replace("motion", motion)
+        self._replace("motion", motion, lambda motion, path: f"motion: field '{path[0]}'")
 
     def __getitem__(self, key):
         at = self._doc()
@@ -131,7 +173,7 @@ class Case:
             return default
 
     def __setitem__(self, key, value):
-        self._c = self._c.with_option(key, _dumps(value))
+        self._c = self._c.with_option(key, _option_json(self.source, key, value))
 
     def copy(self):
         return Case(self._c)
@@ -164,7 +206,8 @@ def generators():
 def generate(name, **parameters):
     """The case `masonry cases NAME --out FILE --PARAM VALUE ...` writes, as the loader reads it back
     (what it refuses raises MasonryError); a parameter's '-' is '_' here."""
-    return Case(_masonry.generate(name, _dumps({k.replace("_", "-"): v for k, v in parameters.items()})))
+    values = {k.replace("_", "-"): v for k, v in parameters.items()}
+    return Case(_masonry.generate(name, _json_text(values, lambda path: f"generator {name}: parameter '{path[0]}'")))
 
 
 def _configured(case, method, options, settings):
@@ -178,7 +221,7 @@ def _configured(case, method, options, settings):
         keys[name if "." in name or name == "gravity" else ("motion." if name in motion else method + ".") + name] = value
     c = case._c
     for key, value in keys.items():
-        c = c.with_option(key, _dumps(value))
+        c = c.with_option(key, _option_json(case.source, key, value))
     return c
 
 
@@ -235,7 +278,7 @@ def compare(a, b, *more, tolerances=None, out=None):
         with open(source, encoding="utf-8") as f:
             text = f.read()
     elif tolerances is not None:
-        text = _dumps(tolerances)
+        text = _json_text(tolerances, lambda path: f"tolerances: \"{path[0]}\"")
     return _masonry.compare(case._c, a, b, text, source, "" if out is None else _os.fspath(out))
 
 

@@ -212,6 +212,28 @@ class BadInput(unittest.TestCase):
         with self.assertRaises(masonry.MasonryError):
             masonry.compare(masonry.run_prd(case, max_steps=1), masonry.run_prd(case, max_steps=1), tolerances={"capacityy": 1})
 
+    def test_a_nan_or_inf_names_the_field(self):
+        # JSON has no nan or inf, so they never reached the loader: json.dumps raised a ValueError
+        # that named nothing.
+        case = masonry.load_case(TILT)
+        run = masonry.run_prd(case, max_steps=1)
+        blocks = case.blocks
+        blocks[1]["vertices"][0, 0] = float("nan")
+        motion = case.motion
+        motion["step"] = float("inf")
+        for call, says in [(lambda: masonry.run_prd(case, step=float("nan")), "[motion.step=nan]: motion: field 'step' = nan"),
+                           (lambda: masonry.run_prd(case, gravity=1e400), "case: field 'gravity' = inf"),
+                           (lambda: case.__setitem__("dem.kn", np.float64("nan")), "dem: field 'kn' = nan"),
+                           (lambda: setattr(case, "blocks", blocks), "block 'block': field 'vertices' = nan"),
+                           (lambda: setattr(case, "motion", motion), "motion: field 'step' = inf"),
+                           (lambda: masonry.generate("circular-arch", step=float("nan")), "parameter 'step' = nan"),
+                           (lambda: masonry.compare(run, run, tolerances={"capacity": float("nan")}), '"capacity" = nan')]:
+            with self.assertRaises(masonry.MasonryError) as e:
+                call()
+            self.assertIn(says, str(e.exception))
+            self.assertIn("must be a finite number", str(e.exception))
+        self.assertEqual(case.to_json(), masonry.load_case(TILT).to_json())  # unchanged
+
 
 class Generators(unittest.TestCase):
     def test_generate_equals_the_command_line(self):
