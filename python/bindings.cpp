@@ -15,6 +15,8 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "app/suggest.hpp"
@@ -26,6 +28,7 @@
 #include "model/case.hpp"
 #include "model/io.hpp"
 #include "model/method.hpp"
+#include "model/options.hpp"
 #include "model/results.hpp"
 #include "runs/run.hpp"
 #include "sweep/sweep.hpp"
@@ -202,6 +205,36 @@ py::array_t<bool> settled_array(const RunResult& r) {
   return a;
 }
 
+// Writes into `obj` the options of section `s` that the case writer leaves out while they hold
+// their unset value (Shown::when_set: prd.hold_closed [], dem.hold_damping "local"), with that
+// value: case[key] = [] then reads back [] (it raised KeyError). An optional number left absent
+// (dem.kn, derived from the case when a run starts) has no value to give and stays absent.
+template <class S>
+void put_unset_options(nlohmann::ordered_json& obj, const S& s) {
+  for (const Option<S>& o : options<S>().rows) {
+    if (obj.contains(o.name)) continue;
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_cvref_t<decltype(s.*member)>;
+          if constexpr (std::is_enum_v<T>)
+            obj[o.name] = o.words[static_cast<size_t>(s.*member)];  // a word: the enum's values in order
+          else if constexpr (!std::is_same_v<T, std::optional<double>>)
+            obj[o.name] = s.*member;
+        },
+        o.member);
+  }
+}
+
+// The case's masonry-case/1 document with every option that has a value, as case[key] reads it.
+std::string options_json(const Case& c) {
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(case_to_json(c));
+  put_unset_options(doc, c);
+  put_unset_options(doc["motion"], c.motion);
+  put_unset_options(doc["prd"], c.prd);
+  put_unset_options(doc["dem"], c.dem);
+  return doc.dump();
+}
+
 py::list blocks_list(const Case& c) {
   py::list out;
   for (const Block& b : c.blocks) {
@@ -375,6 +408,7 @@ PYBIND11_MODULE(_masonry, m) {
       .def_readonly("source", &Case::source)
       .def("blocks", &blocks_list)
       .def("to_json", &case_to_json)
+      .def("options_json", &options_json)
       .def("with_option", [](const Case& c, const std::string& key,
                              const std::string& value_json) { return with_option(c, key, nlohmann::json::parse(value_json)); })
       .def("d_unit", &path_unit);

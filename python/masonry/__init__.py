@@ -159,7 +159,8 @@ class Case:
         self._replace("motion", motion, lambda motion, path: f"motion: field '{path[0]}'")
 
     def __getitem__(self, key):
-        at = self._doc()
+        # Options the case file leaves out while unset (prd.hold_closed []) read as their value.
+        at = _json.loads(self._c.options_json())
         for name in key.split("."):
             if not isinstance(at, dict) or name not in at:
                 raise KeyError(key)

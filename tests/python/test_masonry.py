@@ -93,6 +93,19 @@ class TiltingBlock(unittest.TestCase):
         self.assertEqual(r.settings["contact_tolerance"], 2e-5)
         np.testing.assert_allclose(np.diff(r.d), 0.01, rtol=1e-12)
 
+    def test_an_option_reads_back_what_was_set(self):
+        case = masonry.load_case(TILT)
+        # The case file leaves these out while they hold their unset value: reading one raised KeyError.
+        self.assertEqual(case["prd.hold_closed"], [])
+        case["prd.hold_closed"] = []
+        self.assertEqual(case["prd.hold_closed"], [])
+        case["dem.hold_damping"] = "local"
+        self.assertEqual(case["dem.hold_damping"], "local")
+        case["prd.hold_closed"] = ["ground/block:A"]
+        self.assertEqual(case["prd.hold_closed"], ["ground/block:A"])
+        # An optional number left absent is derived when a run starts: it has no value to read.
+        self.assertIsNone(case.get("dem.open_gap"))
+
     def test_save_writes_what_the_command_line_writes(self):
         with tempfile.TemporaryDirectory() as tmp:
             self.prd.save(tmp)
