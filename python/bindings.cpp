@@ -244,7 +244,10 @@ py::list blocks_list(const Case& c) {
     py::dict d;
     d["id"] = b.id;
     d["vertices"] = v;
-    d["density"] = b.density;
+    // A support's density is read (and range-checked) but used by neither method, its motion
+    // being given, and the case writer leaves it out: given here, it read 2500 until any change
+    // went through the writer and made it 0. A support has none, as in the file the case writes.
+    if (!b.support) d["density"] = b.density;
     d["depth"] = b.depth;
     d["support"] = b.support;
     out.append(d);

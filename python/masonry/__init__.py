@@ -107,7 +107,7 @@ class Case:
     """A case as the loader validated it (masonry-case/1). Every change goes through the loader again.
 
     case.name, case.blocks (list of dicts: id, vertices (n, 2) array in m, counter-clockwise,
-    density kg/m^3, depth m, support), case.motion (dict: step, max_steps, supports), options by
+    density kg/m^3 (free blocks only: neither method uses a support's), depth m, support), case.motion (dict: step, max_steps, supports), options by
     their case-file keys: case["dem.friction_angle"], case["motion.step"] = 0.002.
     """
 
@@ -148,7 +148,8 @@ class Case:
 
     @blocks.setter
     def blocks(self, blocks):
-        self._replace("blocks", [{k: v for k, v in b.items() if not (k == "density" and b.get("support"))} for b in blocks], _block_field)
+        # A support's density goes to the loader too, which checks its range (it was dropped unread).
+        self._replace("blocks", list(blocks), _block_field)
 
     @property
     def motion(self):

@@ -321,6 +321,26 @@ class Generators(unittest.TestCase):
             case.blocks = bad
         self.assertIn("block", str(e.exception))
 
+    def test_a_supports_density_is_neither_shown_nor_dropped_unchecked(self):
+        # The loader takes a support's density ([0, 1e5]); neither method uses it and the case
+        # writer leaves it out. case.blocks gave 2500 until a change made it 0.
+        with open(TILT, encoding="utf-8") as f:
+            doc = json.load(f)
+        doc["blocks"][0]["density"] = 2500
+        case = masonry.parse_case(json.dumps(doc), "support-density.json")
+        self.assertTrue(case.blocks[0]["support"])
+        self.assertNotIn("density", case.blocks[0])
+        self.assertNotIn("density", json.loads(case.to_json())["blocks"][0])
+        text = case.to_json()
+        case.blocks = case.blocks
+        self.assertEqual(case.to_json(), text)
+        # Given on a support through case.blocks, it goes to the loader (it was dropped unread).
+        bad = case.blocks
+        bad[0]["density"] = -1
+        with self.assertRaises(masonry.MasonryError) as e:
+            case.blocks = bad
+        self.assertIn("block 'ground': field 'density'", str(e.exception))
+
 
 class Studies(unittest.TestCase):
     def test_validate_one_benchmark(self):
