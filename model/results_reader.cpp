@@ -433,16 +433,7 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
   if (stable < 0 || stable > std::numeric_limits<int>::max()) in.fail(w, "field 'stable_steps' must be a step index, 0 or more");
   r.stable_steps = static_cast<int>(stable);
   r.message = in.string(j, w, "message", "");
-  // Thrusts are compared over the weight, so a weight the file states is checked against the
-  // case's: a file of 1e6 N (the case's blocks weigh 2943 N) let reactions of the wrong sign
-  // pass a thrust limit, and 1e-300 gave differences of 1e288 W.
-  r.total_weight = total_weight(c);
-  if (j.contains("total_weight")) {
-    const double stated = in.number(j["total_weight"], w, "total_weight");
-    if (!(std::abs(stated - r.total_weight) <= 1e-6 * std::abs(r.total_weight)))
-      in.fail(w, "field 'total_weight' = " + num(stated) + " N, but the case's dead loads weigh " + num(r.total_weight) +
-                     " N: a run of another case (or other densities, gravity or loads)");
-  }
+  const std::optional<double> stated_weight = j.contains("total_weight") ? std::optional<double>(in.number(j["total_weight"], w, "total_weight")) : std::nullopt;
   if (j.contains("settings")) {
     if (!j["settings"].is_object()) in.fail(w, "field 'settings' must be a JSON object");
     r.settings = j["settings"];
@@ -452,6 +443,14 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
   else
     r.timing.total_s = kNaN;
   if (j.contains("blocks")) read_blocks(in, in.array(j, w, "blocks"));
+  // Thrusts are compared over the weight, so a weight the file states is checked against the
+  // case's (after the blocks, which name another case more plainly): a file of 1e6 N (the
+  // case's blocks weigh 2943 N) let reactions of the wrong sign pass a thrust limit, and 1e-300
+  // gave differences of 1e288 W.
+  r.total_weight = total_weight(c);
+  if (stated_weight && !(std::abs(*stated_weight - r.total_weight) <= 1e-6 * std::abs(r.total_weight)))
+    in.fail(w, "field 'total_weight' = " + num(*stated_weight) + " N, but the case's dead loads weigh " + num(r.total_weight) +
+                   " N: a run of another case (or other densities, gravity or loads)");
   r.joints = read_joints(in, in.array(j, w, "joints"));
   in.joints = static_cast<int>(r.joints.size());
   const ojson& steps = in.need(j, w, "steps");
