@@ -424,17 +424,23 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
   }
   doc["blocks"] = blocks;
   const json fragment = merge_fragment(o.merge_file);
-  for (auto it = fragment.begin(); it != fragment.end(); ++it) doc[it.key()] = it.value();
-  const char* tol_field = option_of(&PrdOptions::contact_tolerance).name;
-  const double tol = doc.contains("prd") && doc["prd"].contains(tol_field) && doc["prd"][tol_field].is_number() ? doc["prd"][tol_field].get<double>()
-                                                                                                                : PrdOptions{}.contact_tolerance;
-  const std::vector<std::string> near = near_joints(pieces, tol, std::max(o.near_joint, o.snap));
-  out.notes.insert(out.notes.end(), near.begin(), near.end());
+  // The fragment's contact tolerance decides which gaps are drafting errors: checked against its
+  // range first (naming the fragment), or a negative one would call blocks that meet exactly a gap.
+  PrdOptions prd;
   try {
-    // Text the drawing could not give as UTF-8 (a --name, say) is replaced, never a crash.
-    out.c = parse_case(doc.dump(-1, ' ', false, json::error_handler_t::replace), path);
+    if (fragment.contains("prd")) read_options(fragment["prd"], prd, o.merge_file);
   } catch (const CaseError& e) {
-    // Say where in the drawing each block the message names comes from.
+    throw CaseError(std::string(e.what()) + " [merged into " + path + "]");
+  }
+  const std::vector<std::string> near = near_joints(pieces, prd.contact_tolerance, std::max(o.near_joint, o.snap));
+  out.notes.insert(out.notes.end(), near.begin(), near.end());
+  json merged = doc;
+  for (auto it = fragment.begin(); it != fragment.end(); ++it) merged[it.key()] = it.value();
+  // Text the drawing could not give as UTF-8 (a --name, say) is replaced, never a crash.
+  const auto text = [](const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); };
+  // Say where in the drawing each block the message names comes from, and a drafting gap that
+  // may be the cause.
+  const auto refused = [&](const CaseError& e) {
     std::string msg = e.what();
     std::string where;
     for (const Piece& k : pieces)
@@ -442,7 +448,26 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
         where += (where.empty() ? "" : "; ") + printable(k.id) + ": layer '" + printable(k.layer) + "', entity " + printable(k.handle);
     if (!where.empty()) msg += " [drawing: " + where + "]";
     if (!near.empty()) msg += " [" + near.front() + "]";
-    throw CaseError(msg);
+    return CaseError(msg);
+  };
+  try {
+    out.c = parse_case(text(merged), path);
+  } catch (const CaseError& e) {
+    if (fragment.empty()) throw refused(e);
+    // The message names the file that holds what it refuses: the drawing where the drawing alone
+    // is refused, else the fragment (a load on a block the drawing lacks, a setting out of range).
+    try {
+      parse_case(text(doc), path);
+    } catch (const CaseError& d) {
+      throw refused(d);
+    }
+    try {
+      parse_case(text(merged), o.merge_file);
+    } catch (const CaseError& f) {
+      // The drawing too: a fragment's block names are the drawing's ids.
+      throw refused(CaseError(std::string(f.what()) + " [merged into " + path + "]"));
+    }
+    throw refused(e);  // not reached: the same text fails the same way
   }
   return out;
 }

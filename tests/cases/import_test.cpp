@@ -380,6 +380,53 @@ TEST(CasesImport, DraftingGapsAreReportedAndSnapped) {
   EXPECT_TRUE(told);
 }
 
+// A fragment's fields are checked as the case's, and a refusal names the file that holds the bad
+// field first: the fragment for its settings and its loads (they named the drawing only), the
+// drawing for its blocks. A contact tolerance out of range is refused before gaps are measured with it: a
+// negative one called two blocks that meet exactly "a gap of 5.55e-14 mm".
+TEST(CasesImport, AFragmentsErrorsNameTheFragment) {
+  Scratch dir("fragment");
+  const std::string drawing = (dir.path / "d.dxf").string(), frag = (dir.path / "f.json").string();
+  test::write(drawing, dxf({rect("SUPPORT", -2, -0.5, 2, 0), rect("MASONRY", 0, 0, 0.3, 0.4), rect("MASONRY", 0, 0.4, 0.3, 0.8)}));
+  DxfImportOptions o;
+  o.density = 2000;
+  o.merge_file = frag;
+  const auto refusal = [&](const std::string& fragment) {
+    test::write(frag, fragment);
+    try {
+      import_dxf(drawing, o);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("imported");
+  };
+  struct Bad {
+    std::string fragment, message;
+  };
+  for (const Bad& b : std::vector<Bad>{
+           {R"({"prd": {"contact_tolerance": -1}})", frag + ": prd: field 'contact_tolerance' = -1 is outside"},
+           {R"({"loads": [{"block": "b9", "force": [0, -10]}]})", frag + ": load #0: field 'block': no block 'b9'"},
+           {R"({"motion": {"supports": [{"block": "MASONRY-1", "rotation": 1}]}})",
+            frag + ": motion of block 'MASONRY-1': field 'block': not a support"},
+           {R"({"gravity": 0})", frag + ": case: field 'gravity': nothing loads the structure"},
+           {R"({"prd": {"contact_tolerance": 1}})", frag + ": prd: field 'contact_tolerance'"},
+       }) {
+    const std::string msg = refusal(b.fragment);
+    EXPECT_EQ(msg.rfind(b.message, 0), 0u) << b.fragment << " | " << msg;
+    // The drawing is named after it: the fragment names its blocks (every refusal names the drawing, tests/cases/fuzz_test.cpp).
+    const size_t merged = msg.find(" [merged into " + drawing + "]");
+    EXPECT_NE(merged, std::string::npos) << msg;
+    EXPECT_EQ(msg.find(drawing), merged + 14) << msg;
+    EXPECT_EQ(msg.find("almost meet"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  // The drawing's own fault names the drawing, fragment or not: a block floating 0.5 mm high.
+  test::write(drawing, dxf({rect("SUPPORT", -2, -0.5, 2, 0), rect("MASONRY", 0, 0.0005, 0.3, 0.4)}));
+  const std::string msg = refusal(R"({"prd": {"contact_tolerance": 1e-4}})");
+  EXPECT_EQ(msg.rfind(drawing + ": block 'MASONRY-1'", 0), 0u) << msg;
+  EXPECT_NE(msg.find("almost meet"), std::string::npos) << msg;
+}
+
 // A small well-formedness check: every tag closed in order, attributes quoted, no raw & or <.
 bool well_formed(const std::string& x, std::string& why) {
   std::vector<std::string> open;
