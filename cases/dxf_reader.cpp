@@ -131,7 +131,16 @@ void put_utf8(std::string& o, unsigned cp) {
 
 // A drawing's text as UTF-8: drawings before AutoCAD 2007 write 8-bit text in their code page
 // (taken as Latin-1 where the bytes are not UTF-8) and other characters as \U+XXXX.
-std::string text_utf8(std::string_view raw) {
+//
+// An MTEXT's value also carries inline formatting codes (DXF reference, "MTEXT"; AutoCAD writes
+// them as soon as a font, height or paragraph is set: `\A1;{\fArial|b1;Pier\P2}`). They say how
+// the text looks, not what it says, and an id kept them verbatim, which nobody can type in a
+// --hold or a fragment's loads, so they are removed (cases/README.md, "Ids"): the codes with a
+// value up to ';' (\A \C \c \F \f \H \Q \T \W \p), the toggles \L \l \O \o \K \k, the braces
+// that group them; \P (paragraph), \N (column), \X and \~ (non-breaking space) become a space;
+// a stack \Sa^b; becomes a/b; \\ \{ \} are the characters themselves. Runs of blanks then become
+// one space, and the ends are trimmed. An unknown code is kept as written.
+std::string text_utf8(std::string_view raw, bool mtext) {
   std::string s;
   if (valid_utf8(raw)) {
     s = raw;
@@ -139,17 +148,48 @@ std::string text_utf8(std::string_view raw) {
     for (char ch : raw) put_utf8(s, static_cast<unsigned char>(ch));
   }
   std::string o;
+  // A code's value runs to its ';' (to the end where the drawing omits it).
+  const auto value_end = [&](size_t from) { return std::min(s.find(';', from), s.size()); };
   for (size_t i = 0; i < s.size(); ++i) {
     unsigned cp = 0;
     if (s.compare(i, 3, "\\U+") == 0 && i + 7 <= s.size() && std::from_chars(s.data() + i + 3, s.data() + i + 7, cp, 16).ptr == s.data() + i + 7 &&
         cp >= 0x20 && (cp < 0xd800 || cp > 0xdfff)) {
       put_utf8(o, cp);
       i += 6;
+    } else if (mtext && (s[i] == '{' || s[i] == '}')) {
+      continue;
+    } else if (mtext && s[i] == '\\' && i + 1 < s.size()) {
+      const char c = s[i + 1];
+      if (c == '\\' || c == '{' || c == '}') {
+        o += c;
+        ++i;
+      } else if (c == 'P' || c == 'N' || c == 'X' || c == '~') {
+        o += ' ';
+        ++i;
+      } else if (std::string_view("LlOoKk").find(c) != std::string_view::npos) {
+        ++i;
+      } else if (std::string_view("ACcFfHQTWp").find(c) != std::string_view::npos) {
+        i = value_end(i + 2);
+      } else if (c == 'S') {
+        const size_t end = value_end(i + 2);
+        for (size_t k = i + 2; k < end; ++k) o += s[k] == '^' || s[k] == '#' ? '/' : s[k];
+        i = end;
+      } else {
+        o += s[i];
+      }
     } else {
       o += s[i];
     }
   }
-  return o;
+  if (!mtext) return o;
+  std::string plain;
+  for (char ch : o) {
+    const bool blank = ch == ' ' || ch == '\t';
+    if (blank && (plain.empty() || plain.back() == ' ')) continue;
+    plain += blank ? ' ' : ch;
+  }
+  if (!plain.empty() && plain.back() == ' ') plain.pop_back();
+  return plain;
 }
 
 struct Pair {
@@ -381,7 +421,7 @@ DxfText text(const Pairs& in, const Entity& x) {
   if (!px || !py) x.fail(in, x.e.line, "no insertion point (group codes 10 and 20)");
   t.x = x.nz * x.real(in, *px);
   t.y = x.real(in, *py);
-  t.text = text_utf8(chunks + last);
+  t.text = text_utf8(chunks + last, x.e.type == "MTEXT");
   return t;
 }
 

@@ -35,7 +35,7 @@ struct DxfPolyline {
 
 struct DxfText {
   DxfEntity e;
-  std::string text;  // UTF-8 (a drawing's \U+XXXX escapes and 8-bit code page text converted)
+  std::string text;  // UTF-8 (a drawing's \U+XXXX escapes and 8-bit code page text converted; an MTEXT's formatting codes removed)
   double x = 0, y = 0;
 };
 

@@ -326,6 +326,27 @@ TEST(CasesImport, TextIsReadAsUtf8) {
             "ce");
 }
 
+// An MTEXT's inline formatting codes are how it looks, not its id: AutoCAD writes
+// `\A1;{\fArial|b1;Pier\P2}` for "Pier" over "2", and the id kept it verbatim. A TEXT has no such
+// codes: its backslashes stay.
+TEST(CasesImport, MtextFormattingCodesAreNotPartOfTheId) {
+  const std::string texts =
+      "0\nMTEXT\n5\n50\n8\nMASONRY\n10\n0.5\n20\n0.5\n1\n\\A1;{\\fArial|b1;Pier\\P2}\n"
+      "0\nMTEXT\n5\n51\n8\nMASONRY\n10\n1.5\n20\n0.5\n3\n{\\H0.5x;\\C1;\\Q15;\\W0.8;\\T1.1;\\c255;\\pxqc;arch \\{1\\}\\~\\LA\\l\\O\\o\\K\\k\n"
+      "1\n\\~\\S1^2;\\P\\Ppi\\U+00E8ce\\\\x}\n"
+      "0\nTEXT\n5\n52\n8\nSUPPORT\n10\n0\n20\n-0.2\n1\nsol\\P1\n";
+  Scratch dir("mtext");
+  test::write(dir.path / "m.dxf", dxf({rect("SUPPORT", -2, -0.5, 3, 0), rect("MASONRY", 0, 0, 1, 1), rect("MASONRY", 1, 0, 2, 1)}, 6, texts));
+  DxfImportOptions o;
+  o.density = 2000;
+  const Case c = import_dxf((dir.path / "m.dxf").string(), o).c;
+  EXPECT_EQ(c.blocks[0].id, "sol\\P1");
+  EXPECT_EQ(c.blocks[1].id, "Pier 2");
+  EXPECT_EQ(c.blocks[2].id,
+            "arch {1} A 1/2 pi\xc3\xa8"
+            "ce\\x");
+}
+
 // A wall drawn as a stack of bricks, each named by a text inside it: every brick gets its name
 // and the joints are those of the bond (each brick on the one below or the ground, and beside
 // its neighbours in the course): C x R + (C - 1) x R.
