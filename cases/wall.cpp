@@ -88,7 +88,7 @@ void add_arch(Case& c, const BrickWall& p, const Laid& L, int o) {
   const double cx = L.o.x + ri, ys = L.c_top * p.course_height, ytop = L.c_end * p.course_height;
   const double X = 0.5 * (L.hi - L.lo);
   int n = p.arch_voussoirs;
-  if (n <= 0) n = std::max(3, static_cast<int>(std::lround(M_PI * (ri + 0.5 * p.arch_thickness) / p.course_height)));
+  if (n == 0) n = std::max(3, static_cast<int>(std::lround(M_PI * (ri + 0.5 * p.arch_thickness) / p.course_height)));
   // Directions of the joints, from the left springing (k = 0) to the right one (k = n), mirrored
   // so the arch is symmetric bit for bit.
   std::vector<Vec2> dir(n + 1);
@@ -157,6 +157,18 @@ Case brick_wall(const BrickWall& p) {
   if (!(p.density > 0)) throw fail("the density must be positive");
   if (!(p.step > 0) || p.max_steps < 0) throw fail("need step > 0 and max_steps >= 0");
   if (!(p.arch_thickness > 0) || !(p.lintel_bearing > 0)) throw fail("the arch thickness and the lintel bearing must be positive");
+  // Two voussoirs are the fewest: the joints run from the left springing (k = 0) to the right
+  // one (k = n), so a single voussoir's four corners all lie on the springing line (no area,
+  // refused by the geometry check as "zero area"); two meet at a vertical crown joint.
+  if (p.arch_voussoirs < 0 || p.arch_voussoirs == 1)
+    throw fail("arch-voussoirs " + std::to_string(p.arch_voussoirs) +
+               ": must be 0 (about one per course height) or at least 2 (one voussoir's two joints are both springings, on one line: it "
+               "has no area)");
+  // A moving ground with neither a settlement nor a rotation step would be written as a case
+  // with no support motion, which every run then refuses ("no support moves").
+  if (p.moving != MovingGround::none && p.settlement_step == 0 && p.rotation_step == 0)
+    throw fail(std::string("moving ") + (p.moving == MovingGround::left ? "left" : "right") +
+               ", but settlement-step and rotation-step are both 0: the ground would not move (give either step, or moving none)");
   const double H = p.course_height;
   const double unit = p.bond == WallBond::header ? p.header_length : p.brick_length;
   const double length = p.bricks * unit;
@@ -271,7 +283,7 @@ Case brick_wall(const BrickWall& p) {
 
   c.motion.step = p.step;
   c.motion.max_steps = p.max_steps;
-  if (p.moving != MovingGround::none && (p.settlement_step != 0 || p.rotation_step != 0)) {
+  if (p.moving != MovingGround::none) {
     SupportMotion m;
     m.block = p.moving == MovingGround::left ? 0 : 1;
     m.translation = Vec2(0, -p.settlement_step / p.step);

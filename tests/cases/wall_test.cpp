@@ -135,6 +135,53 @@ TEST(Wall, BadOpeningsAreRefusedNamingThem) {
   EXPECT_THROW(parse_wall_opening("1,2,3,4,vault"), CaseError);
 }
 
+// Parameters that cannot make what they ask for are refused naming the parameter: an arch of one
+// voussoir (its two joints are both springings, on one line: it failed as "block 'arch-1-v0':
+// field 'vertices': zero area"), and a moving ground with no settlement and no rotation (it was
+// written as a case with no support motion, exit code 0).
+TEST(Wall, AnArchOfOneVoussoirAndAGroundThatDoesNotMoveAreRefused) {
+  const auto refusal = [](const BrickWall& p) {
+    try {
+      brick_wall(p);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  BrickWall p = plain(WallBond::running, 10, 10);
+  p.openings = {parse_wall_opening("1.0,0.25,0.5,0.5,arch")};
+  for (const int n : {1, -2}) {
+    p.arch_voussoirs = n;
+    const std::string msg = refusal(p);
+    EXPECT_EQ(msg.rfind("wall: arch-voussoirs " + std::to_string(n) + ": must be 0 (about one per course height) or at least 2", 0), 0u) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  // Two voussoirs are the fewest: two quadrilaterals meeting at the crown.
+  p.arch_voussoirs = 2;
+  const Case two = brick_wall(p);
+  int voussoirs = 0;
+  for (const Block& b : two.blocks) voussoirs += b.id.rfind("arch-1-v", 0) == 0;
+  EXPECT_EQ(voussoirs, 2);
+  p.arch_voussoirs = 0;
+
+  p.settlement_step = 0;
+  for (const MovingGround m : {MovingGround::right, MovingGround::left}) {
+    p.moving = m;
+    const std::string msg = refusal(p);
+    EXPECT_EQ(msg.rfind(std::string("wall: moving ") + (m == MovingGround::left ? "left" : "right") +
+                            ", but settlement-step and rotation-step are both 0: the ground would not move",
+                        0),
+              0u)
+        << msg;
+  }
+  // A turn alone moves it; a fixed ground needs neither.
+  p.rotation_step = 0.001;
+  EXPECT_EQ(brick_wall(p).motion.supports.size(), 1u);
+  p.rotation_step = 0;
+  p.moving = MovingGround::none;
+  EXPECT_TRUE(brick_wall(p).motion.supports.empty());
+}
+
 // Each row of the parameter table sets its own member, under its own name: setting every field
 // to a value other than its default changes each member once, and each refusal names its field.
 TEST(Wall, EveryParameterSetsItsOwnMemberAndBadValuesNameIt) {
