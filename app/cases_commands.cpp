@@ -2,7 +2,7 @@
 //   masonry cases --list
 //   masonry cases NAME --out FILE [parameters]   (NAME --help lists the parameters)
 //   masonry cases import DRAWING.dxf --out FILE [options]
-//   masonry cases show CASE --svg FILE
+//   masonry cases show CASE --svg FILE   (FILE '-': standard output)
 #include <deque>
 #include <functional>
 #include <iostream>
@@ -155,7 +155,7 @@ void add_case_commands(CLI::App& app, Commands& out) {
   auto svg = std::make_shared<std::string>();
   CLI::App* show_cmd = cmd->add_subcommand("show", "Draw a case as SVG: blocks and ids, supports hatched, joints, loads, support motion");
   show_cmd->add_option("case", *shown, "Case file (masonry-case/1)")->required();
-  show_cmd->add_option("--svg", *svg, "SVG file to write")->required();
+  show_cmd->add_option("--svg", *svg, "SVG file to write ('-': standard output)")->required();
 
   out.push_back({cmd, [cmd, list, file, gens, import_cmd, imp, drawing, import_out, show_cmd, shown, svg]() -> int {
                    if (import_cmd->parsed()) {
@@ -165,6 +165,11 @@ void add_case_commands(CLI::App& app, Commands& out) {
                    }
                    if (show_cmd->parsed()) {
                      const Case c = load_case(*shown);
+                     // "-" is standard output, as for the generators' --out (it wrote a file named "-").
+                     if (*svg == "-") {
+                       std::cout << case_svg(c);
+                       return 0;
+                     }
                      write_file_atomic(*svg, case_svg(c));
                      std::cerr << "wrote " << *svg << " (" << c.blocks.size() << " blocks)\n";
                      return 0;

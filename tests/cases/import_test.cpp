@@ -526,5 +526,19 @@ TEST(CasesShow, CommandWritesTheFile) {
   EXPECT_NE(e.find("tilting-block.dxf: layer 'MASONRY', entity 2C"), std::string::npos) << e;
 }
 
+// `--svg -` is standard output, as `masonry cases NAME --out -` is: it wrote a file named "-".
+TEST(CasesShow, SvgDashWritesToStandardOutput) {
+  Scratch dir("show-stdout");
+  const std::string out = (dir.path / "out.svg").string(), err = (dir.path / "err").string();
+  EXPECT_EQ(test::run("cd " + dir.path.string() + " && " + MASONRY_EXE + " cases show " + MASONRY_SOURCE_DIR + "/cases/tilting-block.json --svg - >" +
+                      out + " 2>" + err),
+            0);
+  std::string why;
+  EXPECT_TRUE(test::xml_well_formed(test::read(out), why)) << why;
+  EXPECT_NE(test::read(out).find("<svg"), std::string::npos);
+  EXPECT_EQ(test::read(err), "");
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "-"));
+}
+
 }  // namespace
 }  // namespace masonry
