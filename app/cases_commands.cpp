@@ -141,7 +141,9 @@ void add_case_commands(CLI::App& app, Commands& out) {
   import_cmd->add_option("drawing", *drawing, "DXF drawing (ASCII)")->required();
   import_cmd->add_option("--out,-o", *import_out, "Case file to write ('-': standard output)")->required();
   import_cmd->add_option("--units", imp->units, "Drawing units: m, cm, mm, in, ft (default: the drawing's $INSUNITS)");
-  import_cmd->add_option("--density", imp->density, "Density of free blocks, kg/m3 (layers file entries take precedence)");
+  // Bound to a number, then handed on only when given: 0 is a density the import refuses, not "none".
+  auto density = std::make_shared<double>(0.0);
+  CLI::Option* density_opt = import_cmd->add_option("--density", *density, "Density of free blocks, kg/m3 (layers file entries take precedence)");
   import_cmd->add_option("--depth", imp->depth, "Out-of-plane depth, m (default 1)")->capture_default_str();
   import_cmd->add_option("--layers", imp->layers_file, "JSON {\"layers\": {NAME: {density, depth, support}}}");
   import_cmd->add_option("--merge", imp->merge_file, "JSON fragment merged into the case: name, description, gravity, loads, motion, prd, dem");
@@ -157,8 +159,9 @@ void add_case_commands(CLI::App& app, Commands& out) {
   show_cmd->add_option("case", *shown, "Case file (masonry-case/1)")->required();
   show_cmd->add_option("--svg", *svg, "SVG file to write ('-': standard output)")->required();
 
-  out.push_back({cmd, [cmd, list, file, gens, import_cmd, imp, drawing, import_out, show_cmd, shown, svg]() -> int {
+  out.push_back({cmd, [cmd, list, file, gens, import_cmd, imp, density, density_opt, drawing, import_out, show_cmd, shown, svg]() -> int {
                    if (import_cmd->parsed()) {
+                     if (density_opt->count()) imp->density = *density;
                      const DxfImport r = import_dxf(*drawing, *imp);
                      for (const std::string& n : r.notes) std::cerr << "cases import: " << n << "\n";
                      return emit(r.c, *import_out);

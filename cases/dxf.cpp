@@ -241,11 +241,11 @@ std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, doubl
     k.support = props.support.value_or(layer_is(p.e.layer, "support"));
     k.depth = props.depth.value_or(o.depth);
     if (!k.support) {
-      if (!props.density && !(o.density > 0))
+      if (!props.density && !o.density)
         throw CaseError(where +
                         ": the layer follows no convention the import knows: not SUPPORT*, not IGNORE*, and no density "
                         "(give --density or the layer's density in --layers)");
-      k.density = props.density.value_or(o.density);
+      k.density = props.density ? *props.density : *o.density;
     }
     k.id = printable(p.e.layer, 40) + "-" + std::to_string(++count[p.e.layer]);
     k.box = bounds(k.v);
@@ -368,17 +368,28 @@ std::string skipped_note(const DxfDrawing& d) {
   return s;
 }
 
+// An option's value as given: fmt::g writes a non-finite number as "n/a", which is not what the
+// user typed ("--density nan" read "--density n/a").
+std::string given(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return fmt::g(x, 6);
+}
+
 // The options' own ranges, before the drawing is read.
 void check_options(const std::string& path, const DxfImportOptions& o) {
   const auto length = [&](double x, const char* name, bool zero_ok) {
     if (std::isfinite(x) && (zero_ok ? x >= 0 : x > 0) && x <= kMaxCoordinate) return;
-    throw CaseError(path + ": " + name + " " + fmt::g(x, 6) + ": must be a length in m, " + (zero_ok ? "0" : "above 0") + " to 1e5");
+    throw CaseError(path + ": " + name + " " + given(x) + ": must be a length in m, " + (zero_ok ? "0" : "above 0") + " to 1e5");
   };
   length(o.arc_tolerance, "--arc-tolerance", false);
   length(o.snap, "--snap", true);
   length(o.near_joint, "--near-joint", true);
   length(o.depth, "--depth", false);
-  if (!(std::isfinite(o.density) && o.density >= 0)) throw CaseError(path + ": --density " + fmt::g(o.density, 6) + ": must be a density in kg/m^3");
+  // A density given must be one: 0 was taken for "not given" (the layer then "follows no
+  // convention"), while -1 was refused.
+  if (o.density && !(std::isfinite(*o.density) && *o.density > 0))
+    throw CaseError(path + ": --density " + given(*o.density) + ": must be a density in kg/m^3, positive and finite");
 }
 
 json merge_fragment(const std::string& file) {

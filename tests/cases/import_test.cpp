@@ -55,7 +55,7 @@ std::string import_error(const std::string& text, DxfImportOptions o = {}, const
   Scratch dir("import");
   const std::string path = (dir.path / name).string();
   test::write(path, text);
-  if (o.density == 0) o.density = 2000;
+  if (!o.density) o.density = 2000;
   try {
     import_dxf(path, o);
   } catch (const CaseError& e) {
@@ -172,6 +172,31 @@ TEST(CasesImport, RefusalsAreOneLineNamingDrawingLayerAndEntity) {
   std::string corrupt = dxf({ground, rect("MASONRY", 0, 0, 1, 1)});
   for (size_t k = 40; k < corrupt.size(); k += 7) corrupt[k] = static_cast<char>('0' + k % 43);
   (void)import_error(corrupt);
+}
+
+// A --density given must be a density: 0 was taken for "not given" (then "the layer follows no
+// convention ... no density"), and nan or inf read "--density n/a". Each is refused quoting it.
+TEST(CasesImport, ADensityGivenMustBePositiveAndFinite) {
+  const std::string text = dxf({rect("SUPPORT", -2, -0.5, 2, 0), rect("MASONRY", 0, 0, 1, 1)});
+  for (const auto& [x, shown] :
+       std::vector<std::pair<double, std::string>>{{0.0, "0"}, {-1.0, "-1"}, {NAN, "nan"}, {INFINITY, "inf"}, {-INFINITY, "-inf"}}) {
+    DxfImportOptions o;
+    o.density = x;
+    const std::string msg = import_error(text, o);
+    EXPECT_NE(msg.find("d.dxf: --density " + shown + ": must be a density in kg/m^3, positive and finite"), std::string::npos) << msg;
+  }
+  // On the command line too, where 0 was the "not given" of the option's slot.
+  Scratch dir("density");
+  test::write(dir.path / "d.dxf", text);
+  const std::string err = (dir.path / "err").string();
+  for (const std::string v : {"0", "nan"}) {
+    EXPECT_EQ(test::run(std::string(MASONRY_EXE) + " cases import " + (dir.path / "d.dxf").string() + " --density " + v + " --out " +
+                        (dir.path / "c.json").string() + " 2>" + err),
+              2);
+    const std::string e = test::read(err);
+    EXPECT_NE(e.find("--density " + v + ": must be a density"), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), e.size() - 1) << e;
+  }
 }
 
 // The drawing of a block on the ground, the block an LWPOLYLINE (handle 2C, layer MASONRY) whose
