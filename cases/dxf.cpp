@@ -361,9 +361,20 @@ std::string skipped_note(const DxfDrawing& d) {
     else if (!ignored_layer(e.layer))
       ++n[printable(e.type, 40)];
   }
-  std::string s;
-  for (const auto& [type, k] : n) s += (s.empty() ? "" : ", ") + std::to_string(k) + " " + type;
-  if (!s.empty()) s += " ignored (blocks are closed polylines)";
+  std::string s, lower;
+  int lowers = 0;
+  for (const auto& [type, k] : n) {
+    s += (s.empty() ? "" : ", ") + std::to_string(k) + " " + type;
+    // The DXF reference writes entity types in upper case, and the reader takes them as written:
+    // a 'lwpolyline' is not read as a block, and saying so is the only trace it leaves.
+    if (std::any_of(type.begin(), type.end(), [](char ch) { return std::islower(static_cast<unsigned char>(ch)); }))
+      lower += (lower.empty() ? "'" : ", '") + type + "'", ++lowers;
+  }
+  if (!s.empty())
+    s += " ignored (blocks are closed polylines" +
+         (lower.empty() ? std::string()
+                        : "; " + lower + (lowers > 1 ? " are not entity types" : " is not an entity type") + ": DXF writes them in upper case") +
+         ")";
   if (paper) s += (s.empty() ? "" : "; ") + std::to_string(paper) + " entities in paper space ignored (the drawing is model space)";
   return s;
 }
@@ -449,8 +460,9 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
   for (auto it = fragment.begin(); it != fragment.end(); ++it) merged[it.key()] = it.value();
   // Text the drawing could not give as UTF-8 (a --name, say) is replaced, never a crash.
   const auto text = [](const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); };
-  // Say where in the drawing each block the message names comes from, and a drafting gap that
-  // may be the cause.
+  // Say where in the drawing each block the message names comes from, and what the import
+  // noticed that may be the cause: a drafting gap, entities it did not read (a 'lwpolyline' left
+  // "no free block" with nothing to say why).
   const auto refused = [&](const CaseError& e) {
     std::string msg = e.what();
     std::string where;
@@ -459,6 +471,7 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
         where += (where.empty() ? "" : "; ") + printable(k.id) + ": layer '" + printable(k.layer) + "', entity " + printable(k.handle);
     if (!where.empty()) msg += " [drawing: " + where + "]";
     if (!near.empty()) msg += " [" + near.front() + "]";
+    if (!skipped.empty()) msg += " [" + skipped + "]";
     return CaseError(msg);
   };
   try {

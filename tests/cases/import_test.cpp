@@ -372,6 +372,23 @@ TEST(CasesImport, MtextFormattingCodesAreNotPartOfTheId) {
             "ce\\x");
 }
 
+// DXF writes entity types in upper case and the reader takes them as written: a 'lwpolyline' was
+// dropped with no note (HATCH gets "1 HATCH ignored"), and a drawing of nothing else ended "no
+// free block" with nothing to say why. The note names it, and a refusal carries the note.
+TEST(CasesImport, AnEntityTypeInLowerCaseIsNamedInTheNotes) {
+  const std::string lower = "0\nlwpolyline\n5\n60\n8\nMASONRY\n90\n4\n70\n1\n10\n2\n20\n0\n10\n3\n20\n0\n10\n3\n20\n1\n10\n2\n20\n1\n";
+  const std::string note = "1 lwpolyline ignored (blocks are closed polylines; 'lwpolyline' is not an entity type: DXF writes them in upper case)";
+  Scratch dir("lowercase");
+  test::write(dir.path / "l.dxf", dxf({rect("SUPPORT", -2, -0.5, 4, 0), rect("MASONRY", 0, 0, 1, 1)}, 6, lower));
+  DxfImportOptions o;
+  o.density = 2000;
+  const DxfImport imp = import_dxf((dir.path / "l.dxf").string(), o);
+  EXPECT_EQ(imp.c.blocks.size(), 2u);
+  EXPECT_NE(std::find(imp.notes.begin(), imp.notes.end(), note), imp.notes.end()) << testing::PrintToString(imp.notes);
+  const std::string msg = import_error(dxf({rect("SUPPORT", -2, -0.5, 4, 0)}, 6, lower));
+  EXPECT_NE(msg.find("no free block: every block is a support [" + note + "]"), std::string::npos) << msg;
+}
+
 // A wall drawn as a stack of bricks, each named by a text inside it: every brick gets its name
 // and the joints are those of the bond (each brick on the one below or the ground, and beside
 // its neighbours in the course): C x R + (C - 1) x R.
