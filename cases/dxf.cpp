@@ -196,8 +196,11 @@ std::map<std::string, LayerProps> read_layers(const std::string& file) {
   return out;
 }
 
-// Stage 3: polygons with their ids and properties.
-std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, double scale, const DxfImportOptions& o) {
+// At most this many texts outside every block are listed one by one in the notes; the rest are counted.
+constexpr int kStrayTextsListed = 5;
+
+// Stage 3: polygons with their ids and properties; what it noticed goes to `notes`.
+std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, double scale, const DxfImportOptions& o, std::vector<std::string>& notes) {
   for (const DxfEntity& e : d.curves)
     if (!ignored_layer(e.layer))
       throw CaseError(path + ": " + printable(e.type) + (e.type == "INSERT" ? " (a block reference: explode it in the drawing)" : "") +
@@ -255,11 +258,13 @@ std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, doubl
   // A TEXT or MTEXT inside a polygon names its block.
   const PieceGrid grid(out, 0.0);
   std::vector<const DxfText*> named_by(out.size(), nullptr);
+  int stray = 0;
   for (const DxfText& t : d.texts) {
     if (ignored_layer(t.e.layer) || t.text.empty()) continue;
     if (t.e.off_plane)
       throw CaseError(path + ":" + std::to_string(t.e.line) + ": " + t.e.name() + ": group codes 210/220/230: drawn in another plane than x-y");
     const Vec2 at = scale * Vec2(t.x, t.y);
+    bool inside = false;
     for (const int i : grid.near(at)) {
       Piece& k = out[i];
       if (!(k.box.lo.x() <= at.x() && at.x() <= k.box.hi.x() && k.box.lo.y() <= at.y() && at.y() <= k.box.hi.y()) || !point_in_polygon(at, k.v))
@@ -269,8 +274,16 @@ std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, doubl
                         printable(named_by[i]->text) + "' and '" + printable(t.text) + "')");
       named_by[i] = &t;
       k.id = t.text;
+      inside = true;
     }
+    // A text meant as an id but placed beside its block (the block then gets LAYER-n) is a
+    // drafting error the user wants to hear about, as a skipped entity is.
+    if (!inside && ++stray <= kStrayTextsListed)
+      notes.push_back(printable(t.e.type, 40) + " '" + printable(t.text) + "' at (" + fmt::g(t.x, 6) + ", " + fmt::g(t.y, 6) + ") (handle " +
+                      (t.e.handle.empty() ? std::string("none") : printable(t.e.handle, 40)) + ", layer '" + printable(t.e.layer, 80) +
+                      "') lies in no block: ignored");
   }
+  if (stray > kStrayTextsListed) notes.push_back(std::to_string(stray - kStrayTextsListed) + " more texts lie in no block: ignored");
   return out;
 }
 
@@ -420,10 +433,12 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
   check_options(path, o);
   const DxfDrawing d = read_dxf(path);
   const double scale = unit_scale(path, o.units, d.insunits);
-  std::vector<Piece> pieces = blocks_of(path, d, scale, o);
   DxfImport out;
+  std::vector<std::string> texts;
+  std::vector<Piece> pieces = blocks_of(path, d, scale, o, texts);
   const std::string skipped = skipped_note(d);
   if (!skipped.empty()) out.notes.push_back(skipped);
+  out.notes.insert(out.notes.end(), texts.begin(), texts.end());
   if (const int moved = snap_pieces(pieces, o.snap)) {
     out.notes.push_back(std::to_string(moved) + " vertices snapped onto a neighbouring block (--snap " + fmt::g(o.snap) + " m)");
     for (Piece& k : pieces) k.box = bounds(k.v);

@@ -389,6 +389,28 @@ TEST(CasesImport, AnEntityTypeInLowerCaseIsNamedInTheNotes) {
   EXPECT_NE(msg.find("no free block: every block is a support [" + note + "]"), std::string::npos) << msg;
 }
 
+// A text outside every block named nothing and said nothing (the block it was meant for became
+// MASONRY-1): each is a note, the first five one by one.
+TEST(CasesImport, ATextInNoBlockIsANote) {
+  std::string texts = "0\nTEXT\n5\n70\n8\nMASONRY\n10\n5\n20\n5\n1\nlost\n";
+  for (int k = 0; k < 6; ++k) texts += "0\nMTEXT\n5\n" + std::to_string(80 + k) + "\n8\nNOTES\n10\n-5\n20\n" + std::to_string(k) + "\n1\nnote\n";
+  Scratch dir("stray");
+  test::write(dir.path / "s.dxf", dxf({rect("SUPPORT", -2, -0.5, 2, 0), rect("MASONRY", 0, 0, 1, 1)}, 6, texts));
+  DxfImportOptions o;
+  o.density = 2000;
+  const DxfImport imp = import_dxf((dir.path / "s.dxf").string(), o);
+  EXPECT_EQ(imp.c.blocks[1].id, "MASONRY-1");
+  const std::vector<std::string> expected = {
+      "TEXT 'lost' at (5, 5) (handle 70, layer 'MASONRY') lies in no block: ignored",
+      "MTEXT 'note' at (-5, 0) (handle 80, layer 'NOTES') lies in no block: ignored",
+      "MTEXT 'note' at (-5, 3) (handle 83, layer 'NOTES') lies in no block: ignored",
+      "2 more texts lie in no block: ignored",
+  };
+  for (const std::string& n : expected)
+    EXPECT_NE(std::find(imp.notes.begin(), imp.notes.end(), n), imp.notes.end()) << n << " | " << testing::PrintToString(imp.notes);
+  EXPECT_EQ(imp.notes.size(), 6u) << testing::PrintToString(imp.notes);
+}
+
 // A wall drawn as a stack of bricks, each named by a text inside it: every brick gets its name
 // and the joints are those of the bond (each brick on the one below or the ground, and beside
 // its neighbours in the course): C x R + (C - 1) x R.
