@@ -495,17 +495,26 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
     if (fragment.empty()) throw refused(e);
     // The message names the file that holds what it refuses: the drawing where the drawing alone
     // is refused, else the fragment (a load on a block the drawing lacks, a setting out of range).
-    try {
-      parse_case(text(doc), path);
-    } catch (const CaseError& d) {
-      throw refused(d);
+    // The drawing alone keeps the fragment's contact tolerance, which decides what touches (a
+    // fragment may close a drawing's gap by it), unless the tolerance itself is the fault.
+    const auto fails = [&](const json& j, const std::string& source) -> std::optional<CaseError> {
+      try {
+        parse_case(text(j), source);
+      } catch (const CaseError& x) {
+        return x;
+      }
+      return std::nullopt;
+    };
+    // The drawing too: a fragment's block names are the drawing's ids.
+    const auto in_fragment = [&](const CaseError& f) { return refused(CaseError(std::string(f.what()) + " [merged into " + path + "]")); };
+    const char* tol_field = option_of(&PrdOptions::contact_tolerance).name;
+    json alone = doc;
+    if (fragment.contains("prd") && fragment["prd"].contains(tol_field)) alone["prd"] = {{tol_field, prd.contact_tolerance}};
+    if (const std::optional<CaseError> d = fails(alone, path)) {
+      if (alone.contains("prd") && !fails(doc, path)) throw in_fragment(*fails(alone, o.merge_file));
+      throw refused(*d);
     }
-    try {
-      parse_case(text(merged), o.merge_file);
-    } catch (const CaseError& f) {
-      // The drawing too: a fragment's block names are the drawing's ids.
-      throw refused(CaseError(std::string(f.what()) + " [merged into " + path + "]"));
-    }
+    if (const std::optional<CaseError> f = fails(merged, o.merge_file)) throw in_fragment(*f);
     throw refused(e);  // not reached: the same text fails the same way
   }
   return out;

@@ -510,6 +510,9 @@ TEST(CasesImport, AFragmentsErrorsNameTheFragment) {
   const std::string msg = refusal(R"({"prd": {"contact_tolerance": 1e-4}})");
   EXPECT_EQ(msg.rfind(drawing + ": block 'MASONRY-1'", 0), 0u) << msg;
   EXPECT_NE(msg.find("almost meet"), std::string::npos) << msg;
+  // Unless the fragment's tolerance closes that gap: then its own bad load is the fault.
+  const std::string load = refusal(R"({"prd": {"contact_tolerance": 1e-3}, "loads": [{"block": "b9", "force": [0, -10]}]})");
+  EXPECT_EQ(load.rfind(frag + ": load #0: field 'block': no block 'b9' [merged into " + drawing + "]", 0), 0u) << load;
 }
 
 // A small well-formedness check: every tag closed in order, attributes quoted, no raw & or <.
