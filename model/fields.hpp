@@ -43,16 +43,29 @@ Json parse_document(const std::string& text, const std::string& source) {
     bool object = false;
     std::set<std::string> keys;
     std::string key;
+    long long index = -1;  // an array's element being read: "benchmarks[3].expected", not "benchmarks[].expected"
   };
   std::vector<Frame> frames;
   const auto path = [&] {
     std::string p;
-    for (const Frame& f : frames) p += f.object ? (p.empty() ? "" : ".") + f.key : std::string("[]");
+    for (const Frame& f : frames) {
+      // Appended piece by piece: GCC 12 warns falsely on "[" + std::to_string(...) (PR105651).
+      if (f.object) {
+        if (!p.empty()) p += '.';
+        p += f.key;
+      } else {
+        p += '[';
+        p += std::to_string(f.index);
+        p += ']';
+      }
+    }
     return p;
   };
   using Event = typename Json::parse_event_t;
   const auto cb = [&](int, Event ev, Json& parsed) {
-    if (ev == Event::object_start || ev == Event::array_start) frames.push_back({ev == Event::object_start, {}, {}});
+    const bool element = ev == Event::object_start || ev == Event::array_start || ev == Event::value;
+    if (element && !frames.empty() && !frames.back().object) ++frames.back().index;
+    if (ev == Event::object_start || ev == Event::array_start) frames.push_back({ev == Event::object_start, {}, {}, -1});
     if ((ev == Event::object_end || ev == Event::array_end) && !frames.empty()) frames.pop_back();
     if (ev == Event::key && !frames.empty()) {
       Frame& f = frames.back();

@@ -220,7 +220,7 @@ const Option<DemOptions> kDemRows[] = {
      .flag = "--open-gap"},
     {.name = "confirm_collapse",
      .member = &DemOptions::confirm_collapse,
-     .note = "--confirm-collapse=false turns it off",
+     .note = "--confirm-collapse=false turns it off (with a space, false is taken for another argument and refused)",
      .help = "Confirm a located collapse by the short move from the bracket's last equilibrium; a failure it does not "
              "reproduce becomes an equilibrium and the run goes on (dem/README.md, \"Protocol\", stage 4)",
      .flag = "--confirm-collapse",

@@ -3,6 +3,9 @@
 user would draw them: each block a closed POLYLINE, supports on layer SUPPORT, the others on
 layer MASONRY, each block's id as a TEXT at its centroid, units metres ($INSUNITS 6). Motion,
 loads and solver settings are not geometry: `masonry cases import --merge` adds them back.
+Densities and depths are not written either: the import takes them from its layers or options
+(--density, --layers), depth 1 m by default, so a wall of depth 0.25 m comes back four times as
+heavy unless its layer says otherwise.
 
     python3 scripts/case-to-dxf.py cases/pointed-arch.json cases/drawings/pointed-arch.dxf
 """

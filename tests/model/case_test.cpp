@@ -424,7 +424,7 @@ TEST(CaseErrors, DuplicateKeysAreRefusedNamingTheirPath) {
   const std::string twice = text.substr(0, at) + "\"step\": 0.0175, " + text.substr(at);
   expect_error(twice, {"field 'motion.step' given twice"});
   expect_error(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1, "density": 2})"),
-               {"field 'blocks[].density' given twice"});
+               {"field 'blocks[1].density' given twice"});
   expect_error(R"({"format": "masonry-case/1", "format": "masonry-case/1", "blocks": []})", {"field 'format' given twice"});
   // Equal keys in different objects are no duplicates.
   EXPECT_EQ(error_of(with_blocks(std::string(kGround) + kBlock)), "");
