@@ -4,13 +4,18 @@
 
     check_schemas.py --exe build/app/masonry --source . --scratch DIR
 
-Checked: the five schemas themselves; what masonry writes, freshly made here (case files from
+Checked: the eight schemas themselves; what masonry writes, freshly made here (case files from
 every generator, a DXF import, PRD and DEM results with their optional parts, a comparison, a
-comparison with an outside solver's minimal results); the files checked in (reports/**/results.json
-and comparison.json, cases/*.json, the built-in catalogue and its inline cases, the sweep files);
-the JSON examples of the READMEs; the example solver's results. And that each schema refuses
-what the readers refuse (a test that cannot fail proves nothing). Exit status 1 with one line
-per file that does not validate.
+comparison with an outside solver's minimal results, the sweep.json and sensitivity.json of a
+PRD grid with a failed run, of a PRD Latin hypercube and of a small PRD and DEM grid, validation
+rows of both methods and of the example outside solver, its errors and rows that do not apply);
+the files checked in (reports/**/results.json and comparison.json, every other reports/**/*.json
+by its format, cases/*.json, the built-in catalogue and its inline cases, the sweep files); the
+JSON examples of the READMEs; the example solver's results. That the fresh outputs reach the
+writers' branches the schemas describe (a failed sweep run, an option PRD ignores, a solver
+error, a row that does not apply). And that each schema refuses what the readers refuse, and
+each output schema what its writer never writes (a test that cannot fail proves nothing). Exit
+status 1 with one line per file that does not validate.
 """
 import argparse
 import glob
@@ -18,6 +23,7 @@ import json
 import lzma
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -28,7 +34,7 @@ except ImportError:
     print("check_schemas.py: python3-jsonschema is not installed (bash scripts/install-deps.sh)", file=sys.stderr)
     sys.exit(1)
 
-FORMATS = ["case", "results", "comparison", "catalogue", "sweep"]
+FORMATS = ["case", "results", "comparison", "catalogue", "sweep", "sweep-results", "sensitivity", "validation"]
 problems = []
 checked = {f: 0 for f in FORMATS}
 
@@ -50,11 +56,23 @@ def refuses(fmt, doc, what):
         problems.append(f"masonry-{fmt}/1 schema accepts {what}")
 
 
-def run(*args, ok=(0,)):
-    p = subprocess.run(list(args), capture_output=True, text=True)
+def run(*args, ok=(0,), env=None):
+    p = subprocess.run(list(args), capture_output=True, text=True, env=env)
     if p.returncode not in ok:
         problems.append(f"{' '.join(args)}: exit {p.returncode}: {p.stderr.strip()[-300:]}")
     return p
+
+
+def expect(test, what):
+    """The fresh outputs must reach the writer's branch the schema describes (else a schema too
+    loose there would never be caught); `test` reads them (a document the schema refused may
+    lack what it reads: then it is not covered either)."""
+    try:
+        ok = test()
+    except (KeyError, IndexError, TypeError, AttributeError):
+        ok = False
+    if not ok:
+        problems.append(f"not covered: {what}")
 
 
 def main():
@@ -83,6 +101,19 @@ def main():
             check("results", json.load(f), path)
     for path in sorted(glob.glob(os.path.join(src, "reports", "**", "comparison.json"), recursive=True)):
         check("comparison", load(path), path)
+    # Every other JSON file in reports/ (sweep.json, sensitivity.json, validation.json, the sweep
+    # files) by its format; formats without a schema yet are named in the last line.
+    unpublished = {}
+    for path in sorted(glob.glob(os.path.join(src, "reports", "**", "*.json"), recursive=True)):
+        if os.path.basename(path) in ("results.json", "comparison.json"):
+            continue
+        doc = load(path)
+        fmt = doc.get("format", "") if isinstance(doc, dict) else ""
+        m = re.fullmatch(r"masonry-([\w-]+)/1", fmt)
+        if m and m.group(1) in VALIDATORS:
+            check(m.group(1), doc, path)
+        else:
+            unpublished[fmt or "(no format)"] = unpublished.get(fmt or "(no format)", 0) + 1
     for path in sorted(glob.glob(os.path.join(src, "cases", "**", "*.json"), recursive=True)):
         doc = load(path)
         fmt = doc.get("format", "")
@@ -104,7 +135,7 @@ def main():
                 doc = json.loads(block)
             except ValueError:
                 continue  # a fragment
-            m = re.fullmatch(r"masonry-(\w+)/1", doc.get("format", "") if isinstance(doc, dict) else "")
+            m = re.fullmatch(r"masonry-([\w-]+)/1", doc.get("format", "") if isinstance(doc, dict) else "")
             if m and m.group(1) in VALIDATORS:
                 check(m.group(1), doc, f"{readme}: JSON example {k + 1}")
 
@@ -155,6 +186,83 @@ def main():
         if os.path.exists(path):
             check("comparison", load(path), path)
 
+    # Sweeps (PRD-only but one, few runs): sweep.json and sensitivity.json of a grid with a failed
+    # run (thickness < 0: the generator refuses it) and a DEM option PRD ignores, of a Latin
+    # hypercube (base point, one-at-a-time lines, samples), and of a grid with the DEM (the
+    # tilting block: diff_prd, the friction angle's boundary, prd_dem).
+    arch = {"generator": "circular-arch", "parameters": {"radius": 1, "voussoirs": 10, "step": 0.002}}
+    specs = {
+        "sweep-grid": {"case": arch, "methods": ["prd"],
+                       "vary": {"generator.thickness": [-0.05, 0.09, 0.14, 0.18], "dem.friction_angle": [30, 40]}},
+        "sweep-sampled": {"case": arch, "methods": ["prd"],
+                          "sample": {"count": 6, "seed": 7, "one_at_a_time": 2,
+                                     "ranges": {"generator.thickness": [0.13, 0.18], "generator.radius": [0.9, 1.1]}}},
+        "sweep-dem": {"case": os.path.abspath(block), "methods": ["prd", "dem"],
+                      "vary": {"motion.step": [0.017453292519943295], "dem.friction_angle": [15, 35]}},
+    }
+    sweeps = {}
+    for name, spec in specs.items():
+        spec_path = os.path.join(tmp, f"{name}.json")
+        with open(spec_path, "w") as f:
+            json.dump(dict({"format": "masonry-sweep/1", "name": name}, **spec), f)
+        check("sweep", load(spec_path), spec_path)
+        out = os.path.join(tmp, name)
+        run(exe, "sweep", spec_path, "--out", out, "--quiet", "--jobs", "1", ok=(0, 1))
+        docs = {}
+        for fmt, file in [("sweep-results", "sweep.json"), ("sensitivity", "sensitivity.json")]:
+            path = os.path.join(out, file)
+            if os.path.exists(path):
+                docs[fmt] = load(path)
+                check(fmt, docs[fmt], path)
+            else:
+                problems.append(f"masonry sweep {spec_path}: wrote no {file}")
+        sweeps[name] = docs
+    grid, sampled, dem = (sweeps[n] for n in specs)
+    if "sweep-results" in grid and "sensitivity" in grid:
+        expect(lambda: any(r["stopped"] == "error" and r["capacity"] is None for r in grid["sweep-results"]["runs"]), "a failed sweep run")
+        expect(lambda: grid["sweep-results"]["failed"] >= 1 and grid["sweep-results"]["curves"], "a grid's curves beside a failed run")
+        expect(lambda: grid["sensitivity"]["prd_ignores"] and grid["sensitivity"]["note"], "a PRD-only sweep over a DEM option")
+        expect(lambda: {"ignored": True} in grid["sensitivity"]["methods"]["prd"]["parameters"].values(), "an option PRD ignores")
+        expect(lambda: grid["sensitivity"]["methods"]["prd"]["zero_capacity"] >= 1, "a run with capacity 0")
+    if "sweep-results" in sampled and "sensitivity" in sampled:
+        expect(lambda: {r["point"] for r in sampled["sweep-results"]["runs"]} == {"base", "one-at-a-time", "sample"}, "a sampled design's points")
+        expect(lambda: sampled["sensitivity"]["methods"]["prd"]["r2"] is not None
+               and set(sampled["sensitivity"]["methods"]["prd"]["percentiles"]) == {"5", "50", "95"}, "a sampled sweep's regression and percentiles")
+    if "sweep-results" in dem and "sensitivity" in dem:
+        expect(lambda: any(r["diff_prd"] is not None for r in dem["sweep-results"]["runs"]), "a DEM run against its PRD run")
+        expect(lambda: any(c["boundary"] is not None for c in dem["sweep-results"]["curves"]), "a friction angle boundary")
+        expect(lambda: dem["sensitivity"]["prd_dem"], "PRD against DEM per point")
+
+    # Validation: both methods on fast benchmarks (a capacity in rad, a reaction, a threshold,
+    # stands, the duality gap, the least friction angle); the example outside solver as the
+    # README runs it (pass, not applicable, and a case outside its model: a solver error); and
+    # the solver judged as a method a benchmark does not name (no tolerance_why).
+    solver = shlex.join([sys.executable, os.path.join(src, "examples", "toppling_solver.py")]) + " {case} {out}"
+    solver_env = dict(os.environ, TMPDIR=tmp)  # the solver's kept runs go to the scratch directory
+    validations = {
+        "validation": ["--only", "block-topples", "block-reaction", "block-least-friction", "milankovitch-n10", "arch-stands", "duality-pointed-arch"],
+        "validation-solver": ["--solver", solver, "--solver-name", "toppling-py", "--only", "block-topples", "block-reaction",
+                              "block-least-friction", "pointed-arch-test"],
+        "validation-solver-as-dem": ["--solver", solver, "--solver-name", "toppling-py", "--solver-as", "dem", "--only", "block-least-friction"],
+    }
+    rows, validation = [], None
+    for name, args in validations.items():
+        path = os.path.join(tmp, f"{name}.json")
+        run(exe, "validate", *args, "--json", path, "--quiet", ok=(0, 1), env=solver_env)
+        if os.path.exists(path):
+            doc = load(path)
+            check("validation", doc, path)
+            rows += doc.get("rows", []) if isinstance(doc, dict) else []
+            if name == "validation":
+                validation = doc
+        else:
+            problems.append(f"masonry validate {' '.join(args)}: wrote no {path}")
+    expect(lambda: any(r["unit"] == "rad" and r["quantity"] == "capacity" for r in rows), "a capacity in rad")
+    expect(lambda: any(r["method"] == "toppling-py" and r["pass"] for r in rows), "an outside solver's row that passes")
+    expect(lambda: any(r["solver_error"] for r in rows), "an outside solver's error")
+    expect(lambda: any(not r["applicable"] and "tolerance_why" in r for r in rows), "a row that does not apply")
+    expect(lambda: any(not r["applicable"] and "tolerance_why" not in r for r in rows), "a solver judged as a method the benchmark does not name")
+
     # Each schema refuses what its reader refuses.
     minimal = {"format": "masonry-results/1", "method": "m", "case": "c", "capacity": 0.0, "stopped": "collapse", "steps": [{"step": 0, "d": 0.0}]}
     check("results", minimal, "the minimal results")
@@ -174,10 +282,45 @@ def main():
     refuses("catalogue", bad, "a tolerance without its argument")
     refuses("sweep", {"case": "x.json", "vary": {"gravity": [9.81]}}, "a sweep without its format")
     refuses("comparison", {"format": "masonry-comparison/1", "case": "c"}, "a comparison without runs")
+    # The output schemas refuse what their writers never write.
+    if grid.get("sweep-results", {}).get("runs"):
+        doc = grid["sweep-results"]
+        failed_run = next((r for r in doc["runs"] if r["stopped"] == "error"), doc["runs"][0])
+        refuses("sweep-results", dict(doc, format="masonry-sweep/1"), "a sweep file's format")
+        refuses("sweep-results", {k: v for k, v in doc.items() if k != "runs"}, "sweep results without runs")
+        refuses("sweep-results", dict(doc, units="SI: capacity in mm"), "a capacity in mm")
+        refuses("sweep-results", dict(doc, runs=[dict(doc["runs"][0], stopped="running")]), "a sweep run still running")
+        refuses("sweep-results", dict(doc, runs=[dict(failed_run, capacity=0.01)]), "a failed sweep run with a capacity")
+        refuses("sweep-results", dict(doc, runs=[dict(doc["runs"][0], diff_prd=0.1)]), "a PRD run with a difference from PRD")
+        refuses("sweep-results", dict(doc, runs=[dict(doc["runs"][0], point="sample")]), "a sample without its number")
+        refuses("sweep-results", dict(doc, runs=[{k: v for k, v in doc["runs"][0].items() if k != "hinges"}]), "a run without hinges")
+        refuses("sweep-results", dict(doc, sweep_time=1), "an unknown field")
+    if grid.get("sensitivity", {}).get("methods", {}).get("prd") and sampled.get("sensitivity", {}).get("methods", {}).get("prd"):
+        doc = grid["sensitivity"]
+        refuses("sensitivity", dict(doc, format="masonry-sweep-results/1"), "sweep results' format")
+        refuses("sensitivity", {k: v for k, v in doc.items() if k != "methods"}, "a sensitivity without methods")
+        refuses("sensitivity", dict(doc, methods={"prd": dict(doc["methods"]["prd"], r2=0.5)}), "a grid's R²")
+        refuses("sensitivity", dict(doc, methods={"fem": doc["methods"]["prd"]}), "an unknown method")
+        refuses("sensitivity", dict(doc, methods={"prd": dict(doc["methods"]["prd"], parameters={"x": {"ignored": False}})}), "ignored false")
+        prd = sampled["sensitivity"]["methods"]["prd"]
+        refuses("sensitivity", dict(sampled["sensitivity"], methods={"prd": {k: v for k, v in prd.items() if k != "percentiles"}}),
+                "a sampled sweep without percentiles")
+        refuses("sensitivity", dict(doc, design={"kind": "latin-hypercube"}), "a sampled design without its ranges")
+    row = next((r for r in rows if r["pass"]), None)
+    if validation and row:
+        refuses("validation", dict(validation, format="masonry-catalogue/1"), "a catalogue's format")
+        refuses("validation", {k: v for k, v in validation.items() if k != "rows"}, "a validation without rows")
+        refuses("validation", dict(validation, rows=[{k: v for k, v in row.items() if k != "pass"}]), "a row without pass")
+        refuses("validation", dict(validation, rows=[dict(row, applicable=False)]), "a row that passes and does not apply")
+        refuses("validation", dict(validation, rows=[dict(row, obtained=None)]), "a row that passes without a number")
+        refuses("validation", dict(validation, rows=[dict(row, quantity="capacity", unit="N")]), "a capacity in N")
+        refuses("validation", dict(validation, rows=[dict(row, judged_as="toppling-py")]), "a row judged as no method")
 
     for p in problems:
         print(p)
     print("checked: " + ", ".join(f"{n} {f}" for f, n in checked.items()) + (f"; {len(problems)} problems" if problems else "; all valid"))
+    if unpublished:
+        print("in reports/ without a schema: " + ", ".join(f"{f} ({n})" for f, n in sorted(unpublished.items())))
     return 1 if problems else 0
 
 
