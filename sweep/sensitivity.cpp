@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "model/version.hpp"
 #include "sweep/runner.hpp"
 
 namespace masonry {
@@ -337,6 +338,7 @@ SweepSensitivity sensitivity(const SweepPlan& p, const SweepTable& t) {
 ojson sensitivity_json(const SweepPlan& p, const SweepSensitivity& s) {
   ojson j;
   j["format"] = "masonry-sensitivity/1";
+  j["version"] = version_text();  // as sweep.json has: the code that made it
   j["units"] =
       "SI: capacity in " + path_unit(p.base) + " (the last stable d); elasticities d ln(capacity) / d ln(x), dimensionless (d ln(capacity) / dx, 1/unit of x, where log is "
       "false)";

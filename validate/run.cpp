@@ -105,7 +105,7 @@ Measured from_run(const Benchmark& b, const Case& c, const RunResult& r) {
     case Quantity::reaction: {
       if (!any_reactions(r)) return not_applicable("the results give no reactions");
       const StepRecord* s = record_at(r, b.at_d);
-      if (!s) return fail("no recorded equilibrium at d = " + std::to_string(b.at_d) + " m");
+      if (!s) return fail("no recorded equilibrium at d = " + std::to_string(b.at_d) + " " + path_unit(c));
       for (const Reaction& x : s->reactions)
         if (x.support == b.support) return {true, b.component == "x" ? x.force.x() : b.component == "y" ? x.force.y() : x.moment, ""};
       return fail("no reaction of support '" + b.support + "' at d = " + std::to_string(s->d) + " m");
@@ -259,7 +259,10 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
       }
     }
     if (have_expected) {
-      const Measured got = solver ? measure_outside(cat, b, *solver, cache) : measure(cat, b, mr.method, cache);
+      Measured got = solver ? measure_outside(cat, b, *solver, cache) : measure(cat, b, mr.method, cache);
+      // A results file may give null where a number is asked for (JSON has no NaN): no number,
+      // and the row says so (it failed with an empty note, "n/a" in the table).
+      if (got.ok && !std::isfinite(got.value)) got = fail("the run gives no finite number for it (null in its results)");
       row.measured = got.ok;
       row.obtained = got.value;
       row.note = got.note;

@@ -110,6 +110,22 @@ TEST(ValidateSolver, ASolverThatFailsGivesAnErrorRowWithTheReason) {
   }
 }
 
+// A reaction the file gives as null (JSON has no NaN) is no measurement: a FAIL that says so
+// (it failed with an empty note and "n/a" in the table).
+TEST(ValidateSolver, ANullReactionFailsSayingSo) {
+  Scratch dir("validate-solver-null");
+  const std::string file = (dir.path / "null.json").string();
+  test::write(file, R"j({"format": "masonry-results/1", "method": "x", "case": "tilting block (b = 0.2 m, h = 0.4 m)", "capacity": 0.08726646259971647,
+                        "stopped": "max_steps", "steps": [{"step": 0, "d": 0},
+                        {"step": 1, "d": 0.08726646259971647, "reactions": [{"support": "ground", "force": [null, null]}]}]})j");
+  const Outcome o = validate(dir, "--solver 'cp " + file + " {out}/results.json' --only block-reaction");
+  EXPECT_EQ(o.rc, 1) << o.out << o.err;
+  const size_t at = o.out.find("FAIL block-reaction (solver): ");
+  ASSERT_NE(at, std::string::npos) << o.out;
+  const std::string line = o.out.substr(at, o.out.find('\n', at) - at);
+  EXPECT_NE(line.find("no finite number"), std::string::npos) << line;
+}
+
 TEST(ValidateSolver, AThresholdRunsTheSolverAtEveryBisectionPoint) {
   Scratch dir("validate-solver-threshold");
   // A solver that reads the case (stands when dem.friction_angle >= 25 degrees) and counts its runs.
