@@ -369,6 +369,21 @@ std::vector<int> mirror_blocks(const Case& c) {
     }
     if (m[a] < 0) return {};
   }
+  // The dead loads mirror too: a block's weight (density and depth) equal to its mirror's, and
+  // every point load matched by its mirror image on the mirror block (a 2 kN load on one
+  // voussoir of the pointed arch read as symmetric).
+  const auto same = [](double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)); };
+  for (size_t a = 0; a < c.blocks.size(); ++a) {
+    const Block &A = c.blocks[a], &B = c.blocks[size_t(m[a])];
+    if (!A.support && (!same(A.density, B.density) || !same(A.depth, B.depth))) return {};
+  }
+  for (const Load& l : c.loads) {
+    bool matched = false;
+    for (const Load& k : c.loads)
+      matched = matched || (k.block == m[size_t(l.block)] && (k.point - Vec2(2 * xc - l.point.x(), l.point.y())).norm() <= tol &&
+                            (k.force - Vec2(-l.force.x(), l.force.y())).norm() <= 1e-9 * l.force.norm());
+    if (!matched) return {};
+  }
   // The mirror image of a mechanism is the same answer only where the supports' motion is its
   // own mirror image too, up to one translation of the whole scene (which moves no joint and,
   // under gravity, changes the work of every mechanism alike): one support spreading outwards is
@@ -391,7 +406,9 @@ std::vector<int> mirror_blocks(const Case& c) {
     if (std::abs(-rot[o] - rot[b]) > 1e-9 * (1 + std::abs(rot[b]))) return {};
     const Vec2 diff = Vec2(-vel[o].x(), vel[o].y()) - vel[b];
     if (!common) common = diff;
-    if ((diff - *common).norm() > 1e-9 * (1 + vel[b].norm())) return {};
+    // The blocks match within tol (m), so a turning support's centroid velocity within its turn
+    // times tol.
+    if ((diff - *common).norm() > 1e-9 * (1 + vel[b].norm()) + 2 * std::abs(rot[b]) * tol) return {};
   }
   return m;
 }

@@ -249,8 +249,9 @@ std::optional<Parting> hinges_part(const Case& c, const RunResult& a, const RunR
 std::vector<double> mechanism_changes(const RunResult& r, int min_state_records = 2);
 // Block index -> index of its mirror image about the vertical line through the scene's centre,
 // or empty when some block has no mirror image (matched by vertices and support flag), or when
-// the supports' motion is not its own mirror image up to a translation of the whole scene (one
-// support spreading is; one settling, or a slab tilting, is not).
+// the loading is not its own mirror image: the supports' motion up to a translation of the whole
+// scene (one support spreading is; one settling, or a slab tilting, is not), the blocks' weights
+// and the point loads.
 std::vector<int> mirror_blocks(const Case& c);
 
 // comparison.json content for one comparison (NaN and infinities written as null).

@@ -468,7 +468,7 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   d.paragraph({"A hinge is a joint with exactly one open corner; listed as ", Cell("block/block:corner", CellStyle::code),
                std::string(" (the joint's two blocks and the corner, A or B, it turns about) with, in brackets, how far its open "
                            "corner has opened since d = 0, in mm. ") +
-                   (cmp.symmetric ? "The scene is symmetric, so a mirror image counts as a match." : "The scene is not symmetric.") +
+                   (cmp.symmetric ? "The scene is symmetric, so a mirror image counts as a match." : "The scene is not symmetric (in its blocks, or in its loading: support motion, weights, loads).") +
                    (allowed_shift(r) > 0 ? " A hinge within " + joints_text(allowed_shift(r)) +
                                                " of the other run's along a ring, turning about the same side, counts as the same "
                                                "(the tolerances' hinge_shift; compare/README.md, \"Hinges one joint apart\")."

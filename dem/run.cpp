@@ -308,18 +308,19 @@ void close(Run& u, const Failure& f) {
   u.r.collapsed = any_collapse || limit_point;
   u.r.status = u.r.collapsed ? RunStatus::collapse : RunStatus::undecided;
   std::ostringstream msg;
+  const std::string unit = path_unit(u.c);  // d's: rad where the supports only turn
   if (!any_collapse && limit_point) {
-    msg << "limit point: no equilibrium at d = " << f.d << " m, which creeps without slowing down (" << f.attempt.hold.second_half
-        << " m over the last half cap after " << f.attempt.hold.first_half << " m), " << width << " m past the last equilibrium";
+    msg << "limit point: no equilibrium at d = " << f.d << " " << unit << ", which creeps without slowing down (" << f.attempt.hold.second_half
+        << " m over the last half cap after " << f.attempt.hold.first_half << " m), " << width << " " << unit << " past the last equilibrium";
     u.r.limit_point = true;
   } else if (!u.r.collapsed) {
     // The bracket stops narrowing at its tolerance, or where a trial could not be decided.
     const double tolerance = u.bracket > 0 ? u.bracket : u.s.step;
-    msg << "the hold at d = " << f.d << " m neither settled nor ran away within the hold cap (" << u.s.hold_time << " s"
+    msg << "the hold at d = " << f.d << " " << unit << " neither settled nor ran away within the hold cap (" << u.s.hold_time << " s"
         << (f.attempt.hold.end == HoldEnd::creep ? "): it creeps without slowing down" : ") and three more: its motion still dying out")
-        << "; the collapse bracket [" << u.d_eq << ", " << f.d << "] m"
+        << "; the collapse bracket [" << u.d_eq << ", " << f.d << "] " << unit
         << (width > tolerance * (1 + 1e-9) ? " is wider than its tolerance" : "'s upper end stayed undecided") << ": the capacity " << u.d_eq
-        << " m is the last equilibrium, not a located collapse";
+        << " " << unit << " is the last equilibrium, not a located collapse";
   }
   u.r.message = msg.str();
 }

@@ -1,6 +1,7 @@
 #include "model/results.hpp"
 
 #include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -274,7 +275,16 @@ std::string steps_csv(const RunResult& r, const Case& c) {
   o << "\n";
   for (const StepRecord& s : r.steps) {
     o << s.index << "," << s.d << "," << s.energy << "," << s.open_corners.size() << "," << s.cracked.size();
-    for (const Reaction& x : s.reactions) o << "," << x.force.x() << "," << x.force.y();
+    // Each support's columns by its id: a file read back may list its reactions in another order,
+    // or give none (an outside solver's), and every row keeps the header's columns.
+    for (const Block& b : c.blocks) {
+      if (!b.support) continue;
+      const auto x = std::find_if(s.reactions.begin(), s.reactions.end(), [&](const Reaction& y) { return y.support == b.id; });
+      if (x == s.reactions.end())
+        o << ",,";
+      else
+        o << "," << x->force.x() << "," << x->force.y();
+    }
     o << "\n";
   }
   return o.str();
@@ -292,7 +302,7 @@ void require_finite(const StepRecord& s) {
   auto check = [&](double x, const char* what) {
     if (std::isfinite(x)) return;
     std::ostringstream m;
-    m << "the state at step " << s.index << " (d = " << s.d << " m) is not finite: " << what
+    m << "the state at step " << s.index << " (d = " << s.d << ") is not finite: " << what
       << " (the case's numbers are outside what double precision carries)";
     throw std::runtime_error(m.str());
   };

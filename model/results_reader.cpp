@@ -377,7 +377,9 @@ void check_consistency(const Reader& in, const RunResult& r, bool has_stable_ste
     in.fail("results", "field 'capacity' = " + num(r.capacity) + " " + u + " is beyond the last equilibrium recorded (step " + std::to_string(eq->index) +
                            ", d = " + num(eq->d) + " " + u + "): the capacity is a d where the structure stands");
   if (!eq) {
-    const ojson* start = r.settings.is_object() && r.settings.contains("start") ? &r.settings["start"] : nullptr;
+    // settings.start is PRD's own (`prd --from`); an outside solver's free-form settings do not
+    // move the bound.
+    const ojson* start = r.method == "prd" && r.settings.is_object() && r.settings.contains("start") ? &r.settings["start"] : nullptr;
     const double d0 = start && start->is_object() && start->contains("d") && (*start)["d"].is_number() ? (*start)["d"].get<double>() : 0.0;
     if (std::abs(r.capacity - d0) > 1e-9 * std::max(1.0, std::abs(d0)))
       in.fail("results", "field 'capacity' = " + num(r.capacity) + " " + u + ", but no step is an equilibrium: a run that never stands has the capacity of its start, d = " +
@@ -433,7 +435,9 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
   if (stable < 0 || stable > std::numeric_limits<int>::max()) in.fail(w, "field 'stable_steps' must be a step index, 0 or more");
   r.stable_steps = static_cast<int>(stable);
   r.message = in.string(j, w, "message", "");
-  const std::optional<double> stated_weight = j.contains("total_weight") ? std::optional<double>(in.number(j["total_weight"], w, "total_weight")) : std::nullopt;
+  // null (a writer's missing number) is as absent: the case's weight.
+  const bool weight_given = j.contains("total_weight") && !j["total_weight"].is_null();
+  const std::optional<double> stated_weight = weight_given ? std::optional<double>(in.number(j["total_weight"], w, "total_weight")) : std::nullopt;
   if (j.contains("settings")) {
     if (!j["settings"].is_object()) in.fail(w, "field 'settings' must be a JSON object");
     r.settings = j["settings"];

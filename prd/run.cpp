@@ -343,7 +343,7 @@ Step plan(Walk& w, const Solved& sv) {
 
 // Stage "take": the move along cur's path, and the contact state where it ends.
 void take(Walk& w, const Solved& sv, const Step& st, RunResult& r) {
-  if (!(st.h > 0)) throw std::logic_error("prd: the step came to a stop at d = " + std::to_string(w.cur.d) + " m");
+  if (!(st.h > 0)) throw std::logic_error("prd: the step came to a stop at d = " + std::to_string(w.cur.d) + " " + path_unit(*w.m.c));
   Model& m = w.m;
   w.prev2 = std::move(w.prev);
   w.prev = w.cur;

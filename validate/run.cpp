@@ -96,7 +96,7 @@ Measured from_run(const Benchmark& b, const Case& c, const RunResult& r) {
   switch (b.quantity) {
     case Quantity::capacity:
       if (r.status != RunStatus::collapse)
-        return fail("no collapse up to d = " + std::to_string(r.capacity) + " m (stopped: " + status_name(r.status) + ")");
+        return fail("no collapse up to d = " + std::to_string(r.capacity) + " " + path_unit(c) + " (stopped: " + status_name(r.status) + ")");
       return {true, r.capacity, ""};
     case Quantity::least_friction_angle: {
       if (!r.sliding || !r.sliding->any) return fail("the sliding check reported nothing");
@@ -108,7 +108,7 @@ Measured from_run(const Benchmark& b, const Case& c, const RunResult& r) {
       if (!s) return fail("no recorded equilibrium at d = " + std::to_string(b.at_d) + " " + path_unit(c));
       for (const Reaction& x : s->reactions)
         if (x.support == b.support) return {true, b.component == "x" ? x.force.x() : b.component == "y" ? x.force.y() : x.moment, ""};
-      return fail("no reaction of support '" + b.support + "' at d = " + std::to_string(s->d) + " m");
+      return fail("no reaction of support '" + b.support + "' at d = " + std::to_string(s->d) + " " + path_unit(c));
     }
     case Quantity::reaction_balance: {
       if (!any_reactions(r)) return not_applicable("the results give no reactions");
@@ -120,6 +120,9 @@ Measured from_run(const Benchmark& b, const Case& c, const RunResult& r) {
         if (!is_equilibrium(r, s)) continue;  // the failed state closing a DEM run
         Vec2 sum(0, 0);
         for (const Reaction& x : s.reactions) sum += x.force;
+        // A null force (JSON has no NaN) is no measurement: std::max would skip it and pass.
+        if (!std::isfinite(sum.x()) || !std::isfinite(sum.y()))
+          return fail("step " + std::to_string(s.index) + " gives a reaction that is not a number (null in its results)");
         worst = std::max(worst, (sum + P).norm() / P.norm());
         ++n;
       }
@@ -132,7 +135,9 @@ Measured from_run(const Benchmark& b, const Case& c, const RunResult& r) {
       double worst = 0;
       for (const StepRecord& s : r.steps) {
         if (!s.lp) continue;
-        worst = std::max(worst, std::abs(s.lp->primal - s.lp->dual) / (std::abs(s.lp->primal) + W));
+        const double gap = std::abs(s.lp->primal - s.lp->dual) / (std::abs(s.lp->primal) + W);
+        if (!std::isfinite(gap)) return fail("step " + std::to_string(s.index) + " gives an LP optimum that is not a number (null in its results)");
+        worst = std::max(worst, gap);
       }
       return {true, worst, "over " + std::to_string(r.steps.size()) + " steps"};
     }

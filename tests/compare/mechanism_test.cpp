@@ -175,6 +175,22 @@ TEST(Mechanism, TheMirrorImageCountsOnlyUnderALoadingThatIsItsOwnMirrorImage) {
   both_settle.motion.supports.push_back(left);
   EXPECT_FALSE(mirror_blocks(both_settle).empty());
   EXPECT_TRUE(mirror_blocks(load("tilting-block")).empty());  // geometry symmetric, the tilt not
+  // The dead loads mirror too: a point load on one voussoir, or one voussoir heavier.
+  Case loaded = c;
+  Load l;
+  l.block = c.block_index("v2");
+  l.force = Vec2(0, -2000);
+  l.point = centroid(c.blocks[size_t(l.block)].vertices);
+  loaded.loads.push_back(l);
+  EXPECT_TRUE(mirror_blocks(loaded).empty());
+  Load twin = l;
+  twin.block = mirror_blocks(c)[size_t(l.block)];
+  twin.point = centroid(c.blocks[size_t(twin.block)].vertices);
+  loaded.loads.push_back(twin);
+  EXPECT_FALSE(mirror_blocks(loaded).empty());
+  Case heavier = c;
+  heavier.blocks[size_t(c.block_index("v2"))].density *= 1.5;
+  EXPECT_TRUE(mirror_blocks(heavier).empty());
   // A PRD run of the right support settling against one of the left settling: read directly,
   // not as mirror images.
   Case left_settles = settles;

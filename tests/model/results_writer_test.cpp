@@ -2,6 +2,7 @@
 // still going is written as its records stand. (The reader: results_test.cpp.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,16 @@ TEST(StepsCsv, OneColumnCountWhateverTheIds) {
   // d's column is named in d's unit: rad on a slab that only turns.
   const Case tilt = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json");
   EXPECT_EQ(rfc4180(steps_csv(RunResult{}, tilt))[0][1], "d_rad");
+  // Reactions listed in another order, or not at all, still go under their own support's columns.
+  std::reverse(r.steps[1].reactions.begin(), r.steps[1].reactions.end());
+  r.steps[2].reactions.clear();
+  const auto moved = rfc4180(steps_csv(r, c));
+  ASSERT_EQ(moved.size(), 4u);
+  for (const auto& row : moved) EXPECT_EQ(row.size(), 5 + 2 * ids.size());
+  for (size_t i = 0; i < ids.size(); ++i) {
+    EXPECT_EQ(std::stod(moved[2][6 + 2 * i]), -2.0 * static_cast<double>(i));
+    EXPECT_EQ(moved[3][5 + 2 * i], "");
+  }
   // A run without a step (a structure that does not stand as drawn) has the same header.
   r.steps.clear();
   const auto empty = rfc4180(steps_csv(r, c));

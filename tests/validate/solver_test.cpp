@@ -124,6 +124,13 @@ TEST(ValidateSolver, ANullReactionFailsSayingSo) {
   ASSERT_NE(at, std::string::npos) << o.out;
   const std::string line = o.out.substr(at, o.out.find('\n', at) - at);
   EXPECT_NE(line.find("no finite number"), std::string::npos) << line;
+  // The same null in the balance of every record: std::max skipped it, and it passed with 0.
+  const std::string arch = (dir.path / "null-arch.json").string();
+  test::write(arch, R"j({"format": "masonry-results/1", "method": "x", "case": "pointed-arch", "capacity": 0, "stopped": "max_steps",
+                        "steps": [{"step": 0, "d": 0, "reactions": [{"support": "left", "force": [null, null]}, {"support": "right", "force": [null, null]}]}]})j");
+  const Outcome b = validate(dir, "--solver 'cp " + arch + " {out}/results.json' --only reactions-pointed-arch");
+  EXPECT_EQ(b.rc, 1) << b.out << b.err;
+  EXPECT_NE(b.out.find("not a number (null in its results)"), std::string::npos) << b.out;
 }
 
 TEST(ValidateSolver, AThresholdRunsTheSolverAtEveryBisectionPoint) {
