@@ -196,6 +196,8 @@ void add_compare_commands(CLI::App& app, Commands& out) {
     add_common_options(sub, *o);
     out.push_back({sub, [o]() {
                      const Case c = o->settings.apply(load_case(o->case_path));
+                     for (const std::string& line : idle_options(c.prd)) std::cerr << "compare: note: " << line << "\n";
+                     for (const std::string& line : idle_options(c.dem)) std::cerr << "compare: note: " << line << "\n";
                      return run_compare(c, *o, o->case_path);
                    }});
   }

@@ -148,6 +148,7 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                    const Case c = o->settings.apply(load_case(o->case_path));
                    const DemSettings s = DemSettings::from_case(c);
                    if (!o->quiet) warn_dem_cost(c, s);
+                   for (const std::string& line : idle_options(c.dem)) std::cerr << "dem: note: " << line << "\n";
                    if (o->convergence) return run_study(c, s, Study::convergence, *o);
                    if (o->stiffness_study) return run_study(c, s, Study::stiffness, *o);
                    RunProgress progress("dem", s.step * s.max_steps, 0.0, dem_step_detail, path_unit(c));

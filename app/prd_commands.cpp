@@ -141,6 +141,7 @@ void add_prd_commands(CLI::App& app, Commands& out) {
                      if (*friction >= 0) s.sliding_check = true;
                      if (!from->empty()) s.start = start_of(c, *from, *from_d, *offsets);
                      warn_lp_cost(c, "prd", 1e-6);
+                     for (const std::string& line : idle_options(c.prd)) std::cerr << "prd: note: " << line << "\n";
                      RunProgress progress("prd", (s.start ? s.start->d : 0.0) + s.step * s.max_steps, 1.0, {}, path_unit(c));
                      const RunResult r = run_prd(c, s, {*dir, *quiet ? std::function<void(const RunResult&)>() : std::ref(progress)});
                      if (!*quiet || !located(r.status))

@@ -604,6 +604,23 @@ const char* option_command_name(OptionCommand c) {
   return "?";
 }
 
+std::vector<std::string> idle_options(const PrdOptions& p) {
+  std::vector<std::string> out;
+  const auto idle = [&](const std::string& key, const char* flag) {
+    out.push_back(key + " (" + flag + ") has no effect without prd.adaptive (--adaptive): the steps are fixed");
+  };
+  if (!p.adaptive && p.event_tolerance != PrdOptions{}.event_tolerance) idle(option_key(&PrdOptions::event_tolerance), "--event-tolerance");
+  if (!p.adaptive && p.max_step != PrdOptions{}.max_step) idle(option_key(&PrdOptions::max_step), "--max-step");
+  return out;
+}
+
+std::vector<std::string> idle_options(const DemOptions& d) {
+  std::vector<std::string> out;
+  if (d.move_time == 0 && d.ramp_fraction != DemOptions{}.ramp_fraction)
+    out.push_back(option_key(&DemOptions::ramp_fraction) + " (--ramp-fraction) has no effect without dem.move_time (--move-time): the servo paces the moves");
+  return out;
+}
+
 std::string options_markdown() {
   std::ostringstream md;
   md << "| key | type | default | range | unit | flag | meaning |\n|---|---|---|---|---|---|---|\n";

@@ -148,4 +148,10 @@ void write_options(nlohmann::ordered_json& obj, const S& s);
 template <class S>
 nlohmann::ordered_json echo_options(const S& s);
 
+// Options the case sets that act only with another one it leaves off (prd.event_tolerance and
+// prd.max_step without prd.adaptive, dem.ramp_fraction without dem.move_time): one line each
+// for the user, since the run accepts them, echoes them in its settings and ignores them.
+std::vector<std::string> idle_options(const PrdOptions& p);
+std::vector<std::string> idle_options(const DemOptions& d);
+
 }  // namespace masonry

@@ -132,6 +132,24 @@ TEST(CommandLine, ASwitchOnByDefaultTurnsOffWithEqualsFalse) {
   EXPECT_FALSE(dem["settings"]["confirm_collapse"].get<bool>());
 }
 
+// An option that acts only with another one the run leaves off is accepted and echoed in the
+// settings, but ignored: the run says so (the capacity is the same with and without it).
+TEST(CommandLine, AnOptionThatActsOnlyWithAnotherSaysSo) {
+  Scratch dir("cli-idle");
+  const std::string out = (dir.path / "o").string();
+  const Ran idle = run("prd " + kTilt + " --out " + out + " --event-tolerance 1e-5", dir);
+  EXPECT_EQ(idle.rc, 0) << idle.err;
+  EXPECT_NE(idle.err.find("prd: note: prd.event_tolerance (--event-tolerance) has no effect without prd.adaptive"), std::string::npos) << idle.err;
+  const double with = nlohmann::json::parse(test::read(dir.path / "o" / "results.json"))["capacity"].get<double>();
+  const Ran plain = run("prd " + kTilt + " --out " + out, dir);
+  EXPECT_EQ(plain.err.find("note:"), std::string::npos) << plain.err;
+  EXPECT_EQ(nlohmann::json::parse(test::read(dir.path / "o" / "results.json"))["capacity"].get<double>(), with);
+  const Ran used = run("prd " + kTilt + " --out " + out + " --adaptive --event-tolerance 1e-5", dir);
+  EXPECT_EQ(used.err.find("note:"), std::string::npos) << used.err;
+  const Ran ramp = run("dem " + kTilt + " --out " + out + " --quiet --max-steps 1 --ramp-fraction 0.1", dir);
+  EXPECT_NE(ramp.err.find("dem: note: dem.ramp_fraction (--ramp-fraction) has no effect without dem.move_time"), std::string::npos) << ramp.err;
+}
+
 // A case whose supports do not move is refused by the capacity commands (exit 2, one line),
 // where `masonry prd` ran 1000 steps to "max_steps, capacity 1 m" with exit code 0.
 TEST(CommandLine, SupportsThatDoNotMoveAreRefused) {
