@@ -6,19 +6,6 @@ namespace masonry {
 
 namespace {
 
-// Edits from a to b, two neighbouring letters swapped counting as one (optimal string alignment).
-size_t edits(const std::string& a, const std::string& b) {
-  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (size_t i = 1; i <= a.size(); ++i)
-    for (size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[a.size()][b.size()];
-}
-
 // Every long option of `app` and the apps above it (`--help` included), with its dashes.
 std::vector<std::string> long_options(const CLI::App* app) {
   std::vector<std::string> out;
@@ -40,29 +27,7 @@ std::string full_name(const CLI::App* app) {
   return n;
 }
 
-std::string hint(const std::string& typed, const std::vector<std::string>& names) {
-  const std::string best = nearest_name(typed, names);
-  return best.empty() ? std::string() : "; did you mean '" + best + "'?";
-}
-
 }  // namespace
-
-std::string nearest_name(const std::string& typed, const std::vector<std::string>& names) {
-  std::string best;
-  size_t best_d = 3;
-  for (const std::string& n : names) {
-    const size_t d = edits(typed, n);
-    if (d < best_d && 2 * d < typed.size()) best = n, best_d = d;
-  }
-  if (!best.empty()) return best;
-  std::string prefixed;
-  for (const std::string& n : names)
-    if (typed.size() >= 3 + (typed.rfind("--", 0) == 0 ? 2 : 0) && n.rfind(typed, 0) == 0) {
-      if (!prefixed.empty()) return "";  // two names begin so: no guess
-      prefixed = n;
-    }
-  return prefixed;
-}
 
 std::optional<std::string> unknown_name_hint(CLI::App& app, const std::vector<std::string>& args) {
   // Walk the words as CLI11 does: each one that names a subcommand of the current app enters it.
@@ -75,7 +40,7 @@ std::optional<std::string> unknown_name_hint(CLI::App& app, const std::vector<st
       const std::string name = w.substr(0, w.find('='));
       const std::vector<std::string> known = long_options(at);
       if (std::find(known.begin(), known.end(), name) == known.end())
-        return full_name(at) + ": unknown option '" + name + "'" + hint(name, known) + " (" + full_name(at) + " --help lists them)";
+        return full_name(at) + ": unknown option '" + name + "'" + did_you_mean(name, known) + " (" + full_name(at) + " --help lists them)";
       continue;
     }
     if (w.size() > 1 && w[0] == '-') continue;  // a short option, or a negative number
@@ -92,7 +57,7 @@ std::optional<std::string> unknown_name_hint(CLI::App& app, const std::vector<st
     const std::vector<std::string> subs = subcommand_names(at);
     const bool positionals = !at->get_options([](CLI::Option* o) { return o->get_positional(); }).empty();
     if (!positional_seen && !subs.empty() && !positionals)
-      return full_name(at) + ": '" + w + "' is not a command" + hint(w, subs) + " (" + full_name(at) + " --help lists them)";
+      return full_name(at) + ": '" + w + "' is not a command" + did_you_mean(w, subs) + " (" + full_name(at) + " --help lists them)";
     positional_seen = true;
   }
   return std::nullopt;

@@ -7,12 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace masonry {
+#include "model/names.hpp"  // nearest_name, did_you_mean: the rule
 
-// The name among `names` that `typed` most likely misspells: the nearest by edits (an inserted,
-// dropped or changed letter, or two letters swapped), within 2 edits and fewer than half its
-// letters, or the one name it begins (an abbreviation of at least 3 letters); empty when none.
-std::string nearest_name(const std::string& typed, const std::vector<std::string>& names);
+namespace masonry {
 
 // One line for a command line that names a subcommand or an option that does not exist, with
 // the nearest existing name; nothing when every name exists (another usage error, left to

@@ -19,7 +19,7 @@
 #include <variant>
 #include <vector>
 
-#include "app/suggest.hpp"
+#include "model/names.hpp"
 #include "cases/generators.hpp"
 #include "cases/parameters.hpp"
 #include "cases/wall_fields.hpp"
@@ -348,13 +348,11 @@ py::dict run_sweep_file(const std::string& spec, const std::string& dir, int job
 // reads it.
 Case generated_case(const std::string& name, const nlohmann::json& values) {
   if (name != "wall" && !find_case_generator(name)) {
-    // As `masonry cases wal` does: the nearest name, by the command line's rule (app/suggest.hpp).
+    // As `masonry cases wal` does: the nearest name, by the command line's rule (model/names.hpp).
     std::vector<std::string> names;
     for (const CaseGenerator& g : case_generators()) names.push_back(g.name);
     names.push_back("wall");
-    const std::string best = nearest_name(name, names);
-    throw CaseError("no case generator '" + printable(name) + "'" + (best.empty() ? "" : "; did you mean '" + best + "'?") +
-                    " (masonry.generators(), and 'wall')");
+    throw CaseError("no case generator '" + printable(name) + "'" + did_you_mean(name, names) + " (masonry.generators(), and 'wall')");
   }
   const Case c = name == "wall" ? brick_wall(wall_parameters(values, "generate('wall')")) : generate_case(name, values);
   return parse_case(case_to_json(c), "generator " + name);
