@@ -137,19 +137,26 @@ void grid_elasticity(const SweepPlan& p, const SweepTable& t, const std::vector<
   // ln(x) where every x that enters the fit is positive: the runs located with a positive
   // capacity, not every run (a failed run at thickness -0.05 turned the thickness's elasticity
   // from 5.98 to a slope against x of 38.5 while the four runs fitted were the same).
-  std::vector<int> fitted;
+  // (Of those, the ones on a grid line with another: a line of one point has no slope.)
+  const auto others_of = [&](int i) {
+    json others = json::array();
+    for (size_t j = 0; j < p.keys.size(); ++j) others.push_back(j == k ? json(nullptr) : p.runs[i].values[j]);
+    return others.dump();
+  };
+  std::map<std::string, std::vector<int>> on_line;
   for (int i : runs)
-    if (const SweepRow* r = located_row(t, i); r && r->capacity > 0) fitted.push_back(i);
+    if (const SweepRow* r = located_row(t, i); r && r->capacity > 0) on_line[others_of(i)].push_back(i);
+  std::vector<int> fitted;
+  for (const auto& [key, line] : on_line)
+    if (line.size() >= 2) fitted.insert(fitted.end(), line.begin(), line.end());
   ps.log = all_positive(p, fitted, k);
   ps.estimate = std::string("least-squares slope of ln(capacity) against ") + (ps.log ? "ln(x)" : "x") +
                 " along the grid's lines (the other options fixed, each line its own intercept), over the runs with a positive capacity";
   for (int i : runs) {
     const SweepRow* r = located_row(t, i);
     if (!r || !(r->capacity > 0)) continue;
-    json others = json::array();
-    for (size_t j = 0; j < p.keys.size(); ++j) others.push_back(j == k ? json(nullptr) : p.runs[i].values[j]);
     const double x = number_of(p.runs[i].values[k]);
-    lines[others.dump()].emplace_back(ps.log ? std::log(x) : x, std::log(r->capacity));
+    lines[others_of(i)].emplace_back(ps.log ? std::log(x) : x, std::log(r->capacity));
   }
   double sxx = 0, sxy = 0;
   int n = 0, groups = 0;
