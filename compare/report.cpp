@@ -398,7 +398,7 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
                                  "the agreement at the same joints where that is lower)."
                            : std::string()) +
        " The last row compares how the runs collapse, from each one's last equilibrium to its collapse state: the DEM's is its "
-       "fall when a block has drifted 2% of the scene, PRD's the configuration one step past its capacity moved along its "
+       "fall when its hold is called a collapse (a block drifted 2% of the scene, its kinetic energy growing, or the cap's rule), PRD's the configuration one step past its capacity moved along its "
        "collapse mechanism alone by up to a step, so large motions past the first one take part. Where the agreement is below 1, the joints that differ most (their share of the "
        "difference) and what each run does there (the second block's turn relative to the first, each corner's opening, the "
        "slip). The hinge table below is the diagnostic of open corners at the interval ends."});
