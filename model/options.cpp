@@ -574,12 +574,21 @@ ordered_json echo_options(const S& s) {
   return obj;
 }
 
+template <class S>
+ordered_json valued_options(const S& s) {
+  ordered_json obj = ordered_json::object();
+  for (const Option<S>& o : options<S>().rows)
+    if (shown(o, s, Shown::always)) put(obj, o, s);
+  return obj;
+}
+
 #define MASONRY_OPTION_SECTION(S)                                                                         \
   template void read_options<S>(const json&, S&, const std::string&, std::initializer_list<const char*>); \
   template void check_options<S>(const S&, const std::string&, bool);                                     \
   template void check_scene_options<S>(const S&, double, const std::string&);                             \
   template void write_options<S>(ordered_json&, const S&);                                                \
-  template ordered_json echo_options<S>(const S&);
+  template ordered_json echo_options<S>(const S&);                                                        \
+  template ordered_json valued_options<S>(const S&);
 MASONRY_OPTION_SECTION(Case)
 MASONRY_OPTION_SECTION(Motion)
 MASONRY_OPTION_SECTION(PrdOptions)

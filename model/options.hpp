@@ -148,6 +148,11 @@ void write_options(nlohmann::ordered_json& obj, const S& s);
 template <class S>
 nlohmann::ordered_json echo_options(const S& s);
 
+// Every option of the section that has a value (all but an optional number left absent, which
+// a run derives when it starts), as the writers give them: what Python's case[key] reads.
+template <class S>
+nlohmann::ordered_json valued_options(const S& s);
+
 // Options the case sets that act only with another one it leaves off (prd.event_tolerance and
 // prd.max_step without prd.adaptive, dem.ramp_fraction without dem.move_time): one line each
 // for the user, since the run accepts them, echoes them in its settings and ignores them.

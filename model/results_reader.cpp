@@ -349,8 +349,8 @@ std::optional<SlidingSummary> read_sliding(const Reader& in, const ojson& x) {
   return s;
 }
 
-// The checks that need the whole file: the steps run forward, the capacity and stable_steps are
-// those of the steps, and the status agrees with `collapsed`.
+// The checks that need the whole file: the steps run forward from step 0, the capacity and
+// stable_steps are those of the equilibria among them, and the status agrees with `collapsed`.
 void check_consistency(const Reader& in, const RunResult& r, bool has_stable_steps, bool has_collapsed) {
   const std::string u = path_unit(in.c);  // d's unit: rad where every moving support only turns
   for (size_t k = 1; k < r.steps.size(); ++k) {
@@ -362,23 +362,20 @@ void check_consistency(const Reader& in, const RunResult& r, bool has_stable_ste
   }
   if (!r.steps.empty() && r.steps.front().index != 0)
     in.fail(item("steps", 0), "field 'step' = " + std::to_string(r.steps.front().index) + ": the first record is step 0, the configuration the run starts from");
-  const double last = r.steps.empty() ? 0.0 : r.steps.back().d;
-  const double eps = 1e-9 * std::max(1.0, std::abs(last));
-  if (r.capacity < 0 || (!r.steps.empty() && r.capacity > last + eps))
-    in.fail("results", "field 'capacity' = " + num(r.capacity) + " " + u + " is outside [0, the last step's d = " + num(last) + " " + u + "]");
-  // The capacity is a d where the structure stands: never beyond the last equilibrium recorded.
-  // A run with none (a structure that does not stand as drawn) stands nowhere past its start:
-  // d = 0, or where PRD was started on another configuration (settings.start.d, `prd --from`).
-  // Without this a file of no steps, or of none settled, passed any capacity to the gate.
+  // The capacity is a d where the structure stands: from 0 to the last equilibrium recorded (a
+  // file of no steps, or of none settled, passed the gate with any capacity). A run with none
+  // (a structure that does not stand as drawn) stands nowhere past its start: d = 0, or where
+  // PRD was started on another configuration (settings.start.d, `prd --from`; an outside
+  // solver's free-form settings do not move the bound).
   const StepRecord* eq = nullptr;
   for (const StepRecord& s : r.steps)
     if (is_equilibrium(r, s)) eq = &s;
-  if (eq && r.capacity > eq->d + eps)
-    in.fail("results", "field 'capacity' = " + num(r.capacity) + " " + u + " is beyond the last equilibrium recorded (step " + std::to_string(eq->index) +
-                           ", d = " + num(eq->d) + " " + u + "): the capacity is a d where the structure stands");
-  if (!eq) {
-    // settings.start is PRD's own (`prd --from`); an outside solver's free-form settings do not
-    // move the bound.
+  if (eq) {
+    const double eps = 1e-9 * std::max(1.0, std::abs(eq->d));
+    if (r.capacity < 0 || r.capacity > eq->d + eps)
+      in.fail("results", "field 'capacity' = " + num(r.capacity) + " " + u + " is outside [0, the last equilibrium's d = " + num(eq->d) + " " + u +
+                             " (step " + std::to_string(eq->index) + ")]: the capacity is a d where the structure stands");
+  } else {
     const ojson* start = r.method == "prd" && r.settings.is_object() && r.settings.contains("start") ? &r.settings["start"] : nullptr;
     const double d0 = start && start->is_object() && start->contains("d") && (*start)["d"].is_number() ? (*start)["d"].get<double>() : 0.0;
     if (std::abs(r.capacity - d0) > 1e-9 * std::max(1.0, std::abs(d0)))

@@ -527,13 +527,15 @@ Mechanism collapse_mechanism(Model& m, double scale, std::vector<Pose>* moved) {
   // increment over a unit of the step), the mechanism is the LP's ray itself: the directions
   // in which every row's left-hand side keeps its sign, the LP with every bound at zero, boxed.
   // The step's bounds go back to GLPK at its next solve.
-  const bool ray = st != LpStatus::optimal;
-  if (ray) {
+  const auto solve_ray = [&] {
     for (size_t i = 0; i < m.row_type.size(); ++i)
       if (m.row_type[i] != GLP_FR) glp_set_row_bnds(lp, static_cast<int>(i) + 1, m.row_type[i], 0, 0);
-    st = solve(m);
-    m.glpk_behind = true;
-  }
+    const LpStatus ray_status = solve(m);
+    m.glpk_behind = true;  // after the solve: the step's bounds go back to GLPK at its next one
+    return ray_status;
+  };
+  const bool ray = st != LpStatus::optimal;
+  if (ray) st = solve_ray();
   if (st == LpStatus::optimal) {
     // Open: at the end of the boxed step; along the ray, where it opens or is open already.
     std::vector<double> s(m.ends.size());
@@ -556,12 +558,7 @@ Mechanism collapse_mechanism(Model& m, double scale, std::vector<Pose>* moved) {
     // configuration cannot. The ray's LP (every bound at zero, boxed), without the step's
     // imposed motion: the boxed step's optimum mixes the motion the step drives with the free
     // mechanism, and which corner of the boxes it takes is not unique.
-    if (!ray) {
-      for (size_t i = 0; i < m.row_type.size(); ++i)
-        if (m.row_type[i] != GLP_FR) glp_set_row_bnds(lp, static_cast<int>(i) + 1, m.row_type[i], 0, 0);
-      st = solve(m);
-      m.glpk_behind = true;
-    }
+    if (!ray) st = solve_ray();
     if (st == LpStatus::optimal) {
       const std::vector<double> U = column_values(m), none;
       moved->clear();

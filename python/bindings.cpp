@@ -15,11 +15,8 @@
 #include <optional>
 #include <sstream>
 #include <string>
-#include <type_traits>
-#include <variant>
 #include <vector>
 
-#include "model/names.hpp"
 #include "cases/generators.hpp"
 #include "cases/parameters.hpp"
 #include "cases/wall_fields.hpp"
@@ -28,6 +25,7 @@
 #include "model/case.hpp"
 #include "model/io.hpp"
 #include "model/method.hpp"
+#include "model/names.hpp"
 #include "model/options.hpp"
 #include "model/results.hpp"
 #include "runs/run.hpp"
@@ -205,33 +203,16 @@ py::array_t<bool> settled_array(const RunResult& r) {
   return a;
 }
 
-// Writes into `obj` the options of section `s` that the case writer leaves out while they hold
-// their unset value (Shown::when_set: prd.hold_closed [], dem.hold_damping "local"), with that
-// value: case[key] = [] then reads back [] (it raised KeyError). An optional number left absent
-// (dem.kn, derived from the case when a run starts) has no value to give and stays absent.
-template <class S>
-void put_unset_options(nlohmann::ordered_json& obj, const S& s) {
-  for (const Option<S>& o : options<S>().rows) {
-    if (obj.contains(o.name)) continue;
-    std::visit(
-        [&](auto member) {
-          using T = std::remove_cvref_t<decltype(s.*member)>;
-          if constexpr (std::is_enum_v<T>)
-            obj[o.name] = o.words[static_cast<size_t>(s.*member)];  // a word: the enum's values in order
-          else if constexpr (!std::is_same_v<T, std::optional<double>>)
-            obj[o.name] = s.*member;
-        },
-        o.member);
-  }
-}
-
-// The case's masonry-case/1 document with every option that has a value, as case[key] reads it.
+// The case's masonry-case/1 document with every option that has a value, as case[key] reads it:
+// the case writer leaves out the options that hold their unset value (prd.hold_closed [],
+// dem.hold_damping "local"), and case[key] = [] then read back as a KeyError. An optional
+// number left absent (dem.kn, derived from the case when a run starts) stays absent.
 std::string options_json(const Case& c) {
   nlohmann::ordered_json doc = nlohmann::ordered_json::parse(case_to_json(c));
-  put_unset_options(doc, c);
-  put_unset_options(doc["motion"], c.motion);
-  put_unset_options(doc["prd"], c.prd);
-  put_unset_options(doc["dem"], c.dem);
+  doc.update(valued_options(c));
+  doc["motion"].update(valued_options(c.motion));
+  doc["prd"].update(valued_options(c.prd));
+  doc["dem"].update(valued_options(c.dem));
   return doc.dump();
 }
 

@@ -65,7 +65,7 @@ TEST(ResultsReader, NonsenseIsRefusedWithOneLineNamingTheFileAndThePath) {
       {[](ojson& j) { j.erase("method"); }, "field 'method' is required"},
       {[](ojson& j) { j["method"] = ""; }, "field 'method' must name the method"},
       {[](ojson& j) { j["format"] = "masonry-results/2"; }, "field 'format' must be \"masonry-results/1\""},
-      {[](ojson& j) { j["capacity"] = -5; }, "field 'capacity' = -5 rad is outside [0, the last step's d = 0.02 rad]"},
+      {[](ojson& j) { j["capacity"] = -5; }, "field 'capacity' = -5 rad is outside [0, the last equilibrium's d = 0.02 rad (step 2)]"},
       {[](ojson& j) { j["capacity"] = 1e300; }, "field 'capacity' = 1e+300 rad is outside"},
       {[](ojson& j) { j["capacity"] = nullptr; }, "field 'capacity' must be a number"},
       {[](ojson& j) { j["capacity"] = "0.02"; }, "field 'capacity' must be a number"},
@@ -83,7 +83,7 @@ TEST(ResultsReader, NonsenseIsRefusedWithOneLineNamingTheFileAndThePath) {
          for (ojson& s : j["steps"]) s["settled"] = false;
        },
        "field 'capacity' = 0.02 rad, but no step is an equilibrium"},
-      {[](ojson& j) { j["steps"][2]["settled"] = false; }, "field 'capacity' = 0.02 rad is beyond the last equilibrium recorded (step 1, d = 0.01 rad)"},
+      {[](ojson& j) { j["steps"][2]["settled"] = false; }, "field 'capacity' = 0.02 rad is outside [0, the last equilibrium's d = 0.01 rad (step 1)]"},
       {[](ojson& j) {
          for (ojson& s : j["steps"]) s["step"] = s["step"].get<int>() + 1;
        },

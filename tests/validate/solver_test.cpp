@@ -85,7 +85,7 @@ TEST(ValidateSolver, ASolverThatFailsGivesAnErrorRowWithTheReason) {
        "results.json: results: field 'capacity' is required"},
       {writes("b.json", R"j({"format": "masonry-results/1", "method": "x", "case": "c", "capacity": 0.5, "stopped": "collapse",
                             "steps": [{"step": 0, "d": 0}, {"step": 1, "d": 0.1}]})j"),
-       "results.json: results: field 'capacity' = 0.5 rad is outside [0, the last step's d = 0.1 rad]"},
+       "results.json: results: field 'capacity' = 0.5 rad is outside [0, the last equilibrium's d = 0.1 rad (step 1)]"},
       {writes("c.json", R"j({"format": "masonry-results/1", "method": "x", "case": "tilting block (b = 0.2 m, h = 0.4 m)", "capacity": 0,
                             "stopped": "collapse", "steps": [{"step": 0, "d": 0, "reactions": [{"support": "block", "force": [0, 1]}]}]})j"),
        "results.json: steps[0].reactions[0]: field 'support': block \"block\" is not a support of the case"},
