@@ -514,8 +514,8 @@ DxfImport import_dxf(const std::string& path, const DxfImportOptions& o) {
       if (alone.contains("prd") && !fails(doc, path)) throw in_fragment(*fails(alone, o.merge_file));
       throw refused(*d);
     }
-    if (const std::optional<CaseError> f = fails(merged, o.merge_file)) throw in_fragment(*f);
-    throw refused(e);  // not reached: the same text fails the same way
+    // The drawing stands alone, so the fragment is the fault: the same text again, named by it.
+    throw in_fragment(fails(merged, o.merge_file).value_or(e));
   }
   return out;
 }
