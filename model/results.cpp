@@ -168,6 +168,7 @@ ojson to_json(const RunResult& r, const Case& c) {
     t["lp_s"] = json_number(r.timing.lp_s);
     t["lp_solves"] = r.timing.lp_solves;
     t["kept_basis_solves"] = r.timing.kept_basis_solves;
+    t["interior_solves"] = r.timing.interior_solves;
     t["basis_evaluations"] = r.timing.basis_evaluations;
   } else {
     t["cycles"] = r.timing.cycles;

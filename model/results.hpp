@@ -132,6 +132,9 @@ struct Timing {
   long long lp_solves = 0;
   // PRD: of those, the LPs solved by the previous LP's basis without GLPK (prd/kept_basis.hpp).
   long long kept_basis_solves = 0;
+  // PRD: LPs solved by the interior point, a large structure's (prd/interior.hpp); a later LP that
+  // its solution still solves counts as kept above.
+  long long interior_solves = 0;
   // PRD (event-driven): evaluations of an LP's final basis at another configuration (where a
   // planned move would end) without simplex iterations, one factorisation each; their time is
   // in lp_s.

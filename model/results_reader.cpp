@@ -238,12 +238,13 @@ StepRecord read_step(const Reader& in, const ojson& js, const std::string& w) {
 
 Timing read_timing(const Reader& in, const ojson& t) {
   const std::string w = "timing";
-  in.only(t, w, {"total_s", "lp_s", "lp_solves", "kept_basis_solves", "basis_evaluations", "cycles"});
+  in.only(t, w, {"total_s", "lp_s", "lp_solves", "kept_basis_solves", "interior_solves", "basis_evaluations", "cycles"});
   Timing out;
   out.total_s = in.maybe(t, w, "total_s", kNaN);
   out.lp_s = in.maybe(t, w, "lp_s", 0.0);
   out.lp_solves = in.integer(t, w, "lp_solves", 0);
   out.kept_basis_solves = in.integer(t, w, "kept_basis_solves", 0);
+  out.interior_solves = in.integer(t, w, "interior_solves", 0);
   out.basis_evaluations = in.integer(t, w, "basis_evaluations", 0);
   out.cycles = in.integer(t, w, "cycles", 0);
   return out;

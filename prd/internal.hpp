@@ -18,6 +18,7 @@
 #include "model/io.hpp"
 #include "model/results.hpp"
 #include "prd/glpk_hooks.hpp"
+#include "prd/interior.hpp"
 #include "prd/kept_basis.hpp"
 #include "prd/prd.hpp"
 
@@ -94,6 +95,10 @@ struct Model {
   std::vector<char> row_dirty;  // per LP row: coefficients GLPK does not hold yet
   bool glpk_behind = false;     // bounds and objective not given to GLPK yet
   KeptBasis kept;               // the basis of the last GLPK solve, for the next (kept_basis.hpp)
+  InteriorSolution interior;    // the last interior-point solution (interior.hpp)
+  // The columns are boxed in GLPK (collapse_mechanism): neither the kept basis's nor the interior
+  // point's tests know the boxes, so GLPK solves.
+  bool columns_boxed = false;
   // Whether solve() tries the kept basis: in fixed-step runs. An event-driven run locates its
   // events on the force state, which a statically indeterminate structure does not fix: the
   // round-off between KLU's vertex and GLPK's moved a wall's events, so those runs stay GLPK's.
@@ -104,6 +109,7 @@ struct Model {
   long long basis_evaluations = 0;
   long long kept_basis_solves = 0;  // LPs solved by the kept basis, without GLPK (kept_basis.hpp)
   long long load_path_solves = 0;   // LPs solved from the load path (set_static_basis)
+  long long interior_solves = 0;    // LPs solved by the interior point (interior.hpp)
 
   Vec2 pos(int b, const Vec2& X) const { return cen[b] + rot(angle[b]) * (X - c0[b]); }
   Vec2 material(int b, const Vec2& x) const { return c0[b] + rot(-angle[b]) * (x - cen[b]); }  // pos's inverse

@@ -310,12 +310,26 @@ LpStatus solve(Model& m, bool confirm_infeasible) {
   const bool large = m.ncols >= 3 * kAdvancedBasisBlocks;
   const bool advanced =
       m.first_basis == FirstBasis::advanced || m.first_basis == FirstBasis::statics || (m.first_basis == FirstBasis::by_size && large);
+  m.interior.own = false;
   // Most LPs after the first are solved by the basis of the one before (kept_basis.hpp).
-  if (!m.fresh && m.kept_basis_allowed && t_use_kept_basis && solve_by_kept_basis(m)) {
+  if (!m.fresh && m.kept_basis_allowed && !m.columns_boxed && t_use_kept_basis && solve_by_kept_basis(m)) {
     m.lp_s += seconds_since(t0);
     ++m.lp_solves;
     ++m.kept_basis_solves;
     return LpStatus::optimal;
+  }
+  // A large structure's LP in a fixed-step run: by the interior point's solution of the LP
+  // before where it still holds (a wall hanging from its still half), else by the interior point
+  // (interior.hpp); GLPK where that fails, an unbounded LP (a collapse) among them.
+  if (m.kept_basis_allowed && !m.columns_boxed && m.ncols >= 3 * t_interior_blocks) {
+    const bool kept = interior_still_optimal(m);
+    if (kept || solve_interior(m)) {
+      m.kept.own = false;
+      m.lp_s += seconds_since(t0);
+      ++m.lp_solves;
+      ++(kept ? m.kept_basis_solves : m.interior_solves);
+      return LpStatus::optimal;
+    }
   }
   sync_glpk(m);
   const int rows = glp_get_num_rows(lp);
@@ -426,11 +440,20 @@ LpStatus solve(Model& m, bool confirm_infeasible) {
   }
 }
 
-// The last solve's values: GLPK's, or those of the kept basis where that solved it.
-double row_prim(const Model& m, int row) { return m.kept.own ? kept_row(m, row) : glp_get_row_prim(m.lp.get(), row); }
-double row_dual(const Model& m, int row) { return m.kept.own ? kept_dual(m, row) : glp_get_row_dual(m.lp.get(), row); }
-double objective(const Model& m) { return (m.kept.own ? kept_objective(m) : glp_get_obj_val(m.lp.get())) * m.force_unit; }
-double col_value(const Model& m, int j) { return m.kept.own ? kept_col(m, j) : glp_get_col_prim(m.lp.get(), j); }
+// The last solve's values: GLPK's, or those of the kept basis or the interior point where that
+// solved it.
+double row_prim(const Model& m, int row) {
+  return m.interior.own ? interior_row(m, row) : m.kept.own ? kept_row(m, row) : glp_get_row_prim(m.lp.get(), row);
+}
+double row_dual(const Model& m, int row) {
+  return m.interior.own ? interior_dual(m, row) : m.kept.own ? kept_dual(m, row) : glp_get_row_dual(m.lp.get(), row);
+}
+double objective(const Model& m) {
+  return (m.interior.own ? interior_objective(m) : m.kept.own ? kept_objective(m) : glp_get_obj_val(m.lp.get())) * m.force_unit;
+}
+double col_value(const Model& m, int j) {
+  return m.interior.own ? interior_col(m, j) : m.kept.own ? kept_col(m, j) : glp_get_col_prim(m.lp.get(), j);
+}
 double corner_force(const Model& m, size_t e) { return row_dual(m, 2 * static_cast<int>(e) + 1) * m.force_unit; }
 double corner_slack(const Model& m, size_t e) {
   const int row = 2 * static_cast<int>(e) + 1;
@@ -519,6 +542,7 @@ Mechanism collapse_mechanism(Model& m, double scale, std::vector<Pose>* moved) {
   glp_prob* lp = m.lp.get();
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_DB, -1, 1);
   m.kept.rows.clear();  // its vertex ignores the boxes
+  m.columns_boxed = true;
   Mechanism out;
   // GLPK's first "no feasible point" is taken here, unconfirmed: the ray below is solved then,
   // and its LP is always feasible (zero meets every row), so nothing is lost by a wrong one.
@@ -575,6 +599,7 @@ Mechanism collapse_mechanism(Model& m, double scale, std::vector<Pose>* moved) {
     }
   }
   for (int j = 1; j <= m.ncols; ++j) glp_set_col_bnds(lp, j, GLP_FR, 0, 0);
+  m.columns_boxed = false;
   return out;
 }
 

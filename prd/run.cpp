@@ -432,6 +432,7 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
     r.timing.lp_s = w.m.lp_s;
     r.timing.lp_solves = w.m.lp_solves;
     r.timing.kept_basis_solves = w.m.kept_basis_solves;
+    r.timing.interior_solves = w.m.interior_solves;
     r.timing.basis_evaluations = w.m.basis_evaluations;
     r.timing.total_s = seconds_since(t_start) - io_s;
     if (!on_step) return;
