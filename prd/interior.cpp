@@ -20,6 +20,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "prd/internal.hpp"
 
@@ -199,12 +201,42 @@ bool solve_interior(Model& m) {
   const int n = m.ncols;
   size_t lo = 0;
   for (size_t i = 0; i < rows; ++i) lo += is_lo(m, i);
-  // Start: at rest, every slack and corner force one (the LP's units), the shears zero.
   std::vector<double> x(n + 1, 0.0), s(rows, 0.0), y(rows, 0.0), ax;
-  activities(m, x, ax);
-  for (size_t i = 0; i < rows; ++i)
-    if (is_lo(m, i)) s[i] = std::max(1.0, ax[i] - m.row_lb[i]), y[i] = 1.0;
   std::vector<double> w(rows), rp(rows), rd(n + 1), rc(rows), g, size, rhs(n + 1), vrow(rows);
+  // Start (Mehrotra's): the motion that meets the rows best and the least forces in equilibrium
+  // with the loads, both by least squares on the rows (A'A + beta I, one factorisation), then the
+  // slacks and corner forces shifted positive and balanced. From rest with unit slacks and
+  // forces instead, the iterates of a wall on turning ground wandered to motions of 1e6 steps.
+  for (size_t i = 0; i < rows; ++i) w[i] = is_lo(m, i) || is_fx(m, i) ? 1.0 : 0.0;
+  double start_beta = 1e-8;
+  if (!factorise(m, v, w, start_beta)) return false;
+  for (size_t i = 0; i < rows; ++i) vrow[i] = w[i] * m.row_lb[i];
+  transposed(m, vrow, rhs);
+  normal_solve(m, v, w, start_beta, rhs, x);
+  std::vector<double> u;
+  for (int j = 1; j <= n; ++j) rhs[j] = m.obj_coef[j];
+  normal_solve(m, v, w, start_beta, rhs, u);
+  activities(m, x, ax);
+  activities(m, u, y);  // y = A u: A'y = A'A u = c
+  double least_s = 0, least_y = 0;
+  for (size_t i = 0; i < rows; ++i) {
+    if (!is_lo(m, i)) {
+      if (!is_fx(m, i)) y[i] = 0;
+      continue;
+    }
+    s[i] = ax[i] - m.row_lb[i];
+    least_s = std::min(least_s, s[i]);
+    least_y = std::min(least_y, y[i]);
+  }
+  double sum_s = 0, sum_y = 0, sy = 0;
+  for (size_t i = 0; i < rows; ++i)
+    if (is_lo(m, i)) {
+      s[i] += -1.5 * least_s + 1e-8;
+      y[i] += -1.5 * least_y + 1e-8;
+      sum_s += s[i], sum_y += y[i], sy += s[i] * y[i];
+    }
+  for (size_t i = 0; i < rows; ++i)
+    if (is_lo(m, i)) s[i] += 0.5 * sy / sum_y, y[i] += 0.5 * sy / sum_s;
   std::vector<double> dx, ds(rows), dy(rows), dxa, dsa(rows), dya(rows), adx;
   // The direction for complementarity target rc (per LO row): ds, dy from dx.
   auto direction = [&](double beta, std::vector<double>& dxo, std::vector<double>& dso, std::vector<double>& dyo) {
@@ -246,6 +278,7 @@ bool solve_interior(Model& m) {
       dual_met = dual_met && std::abs(rd[j]) <= 1e-2 * (kDualEps + kDualRel * size[j]);
       x_max = std::max(x_max, std::abs(x[j]));
     }
+    if (getenv("IPM_DEBUG")) fprintf(stderr, "ipm %d rp %.2e mu %.2e xmax %.2e dual %d\n", iter, rp_max, mu, x_max, (int)dual_met);
     if (!std::isfinite(mu) || x_max > kDiverged) return false;
     if (rp_max < 1e-2 * kPrimalEps && dual_met && mu < 1e-14) break;
     for (size_t i = 0; i < rows; ++i) w[i] = is_fx(m, i) ? 1.0 / kDelta : is_lo(m, i) ? y[i] / s[i] : 0.0;
@@ -313,6 +346,7 @@ bool solve_interior(Model& m) {
       return true;
     }
   }
+  if (getenv("IPM_DEBUG")) fprintf(stderr, "face not followed; own optimum %d\n", (int)optimal(m, x, y, ax));
   // Where the face could not be followed, the interior point's own optimum, if it is one.
   if (!optimal(m, x, y, ax)) return false;
   v.dual = y;

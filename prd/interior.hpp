@@ -25,16 +25,17 @@
 #include <memory>
 #include <vector>
 
+#include "prd/prd.hpp"
+
 namespace masonry::prd_detail {
 
 struct Model;
 
-// From this many free blocks up a fixed-step run solves an LP that the kept basis does not by
-// the interior point (GLPK where that fails, as before). Below it GLPK's simplex is faster over
-// a run (its later LPs are solved by the kept basis in milliseconds; prd/README.md).
-constexpr int kInteriorBlocks = 5000;
+// From kInteriorPointBlocks (prd.hpp) free blocks up. Below, GLPK's simplex is faster over a run
+// where the blocks move at every step (its later LPs are solved by the kept basis in
+// milliseconds, the interior point's solution holds only while nothing moves; prd/README.md).
 // The tests lower it on their thread to compare the interior point with GLPK on smaller walls.
-inline thread_local int t_interior_blocks = kInteriorBlocks;
+inline thread_local int t_interior_blocks = kInteriorPointBlocks;
 
 struct InteriorValues;  // CHOLMOD's analysis of the contact graph and the last solution
 struct InteriorSolution {

@@ -1,6 +1,7 @@
 // The piecewise rigid displacement (PRD) solver: a sequence of linear programs on the deformed
-// geometry (see shared/docs/prd-method.md). GLPK solves every LP; one problem object lives for
-// the whole run and is updated in place.
+// geometry (see shared/docs/prd-method.md). GLPK solves the LPs (one problem object lives for the
+// whole run and is updated in place), but for those a previous LP's basis or solution still
+// solves and those of large structures (below).
 #pragma once
 
 #include <functional>
@@ -29,6 +30,11 @@ struct PrdStart {
   std::string source;  // where the configuration comes from, for the results' settings
 };
 const char* start_offsets_name(StartOffsets o);  // "keep", "take-back": the CLI's words
+
+// From this many free blocks up a fixed-step run solves an LP that the previous LP's basis or
+// solution does not by an interior point, GLPK where that fails (prd/README.md, "The interior
+// point"): GLPK's simplex pays for such an LP in minutes, and fails on it from its advanced basis.
+constexpr int kInteriorPointBlocks = 5000;
 
 // PRD's settings (model/case.hpp's PrdOptions, declared once there) and the motion's increment,
 // as one run takes them.

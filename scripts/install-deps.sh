@@ -6,7 +6,7 @@ packages=(
   build-essential cmake            # compiler and build
   libeigen3-dev                    # geometry and small linear algebra
   libglpk-dev                      # the PRD linear programs
-  libsuitesparse-dev               # KLU: the sparse LU of the PRD LP's kept basis (prd/kept_basis.hpp)
+  libsuitesparse-dev               # KLU: the PRD LP's kept basis (prd/kept_basis.hpp); CHOLMOD: its interior point (prd/interior.hpp)
   libbox2d-dev                     # DEM contact geometry
   nlohmann-json3-dev               # case and result files
   liblzma-dev xz-utils             # the runs kept under reports/ as results.json.xz (read; xz writes them)

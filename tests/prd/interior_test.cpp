@@ -10,7 +10,7 @@
 // with an arch and a lintel, and the pointed arch, whose blocks move at every step until it
 // collapses (the collapse is GLPK's: an unbounded LP has no optimum the interior point can pass).
 // The interior point is taken here from one free block up (t_interior_blocks), in runs from
-// kInteriorBlocks.
+// kInteriorPointBlocks.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -24,7 +24,7 @@ namespace {
 
 RunResult run(const Case& c, bool interior) {
   struct Restore {
-    ~Restore() { prd_detail::t_interior_blocks = prd_detail::kInteriorBlocks; }
+    ~Restore() { prd_detail::t_interior_blocks = kInteriorPointBlocks; }
   } restore;
   prd_detail::t_interior_blocks = interior ? 1 : 1 << 28;
   return prd_run(c, PrdSettings::from_case(c));
