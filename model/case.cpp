@@ -46,12 +46,15 @@ double signed_area(const std::vector<Vec2>& p) {
   return 0.5 * a;
 }
 
-double support_travel_per_d(const SupportMotion& m, double L) { return m.translation.norm() + std::abs(m.rotation) * L; }
+double support_travel_per_d(const SupportMotion& m, const Bounds& scene) {
+  const Vec2 outside = (scene.lo - m.about).cwiseMax(m.about - scene.hi).cwiseMax(Vec2(0, 0));
+  return m.translation.norm() + std::abs(m.rotation) * (scene.size() + outside.norm());
+}
 
 double support_travel_per_d(const Case& c) {
-  const double L = scene_size(c);
+  const Bounds scene = scene_bounds(c);
   double v = 0;
-  for (const SupportMotion& m : c.motion.supports) v = std::max(v, support_travel_per_d(m, L));
+  for (const SupportMotion& m : c.motion.supports) v = std::max(v, support_travel_per_d(m, scene));
   return v;
 }
 
@@ -199,7 +202,7 @@ void check_scales(const Case& c, const Reader& r) {
   const Vec2 P = dead_load_resultant(c);
   if (!(P.norm() > 0)) r.fail("case", "field 'gravity': nothing loads the structure (gravity 0 and no loads)");
   for (const SupportMotion& m : c.motion.supports) {
-    const double travel = c.motion.step * c.motion.max_steps * support_travel_per_d(m, L);
+    const double travel = c.motion.step * c.motion.max_steps * support_travel_per_d(m, scene_bounds(c));
     if (!std::isfinite(travel) || travel > kMaxCoordinate)
       r.fail("motion of block '" + printable(c.blocks[m.block].id) + "'", "the support would travel beyond 1e5 m over max_steps");
   }

@@ -185,9 +185,11 @@ void validate_geometry(const Case& c);
 double signed_area(const std::vector<Vec2>& poly);
 Vec2 centroid(const std::vector<Vec2>& poly);
 // How far a point a support carries travels per unit of d, m/m: its translation plus its
-// rotation times the scene size L; for the case, the largest over its supports (0 where none
-// moves).
-double support_travel_per_d(const SupportMotion& m, double L);
+// rotation times its lever, the scene's size L plus how far the point it turns about stands
+// outside the scene's bounds (a slab turning about a hinge 4 m from a 1 m stack carries it on a
+// lever of 4 m, not 1); for the case, the largest over its supports (0 where none moves).
+struct Bounds;
+double support_travel_per_d(const SupportMotion& m, const Bounds& scene);
 double support_travel_per_d(const Case& c);
 // How far p lies outside the polygon (0 inside or on it), m: the distance to its nearest edge
 // where an even-odd crossing test puts p outside.

@@ -20,8 +20,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "prd/internal.hpp"
 
@@ -235,8 +233,9 @@ bool solve_interior(Model& m) {
       y[i] += -1.5 * least_y + 1e-8;
       sum_s += s[i], sum_y += y[i], sy += s[i] * y[i];
     }
-  for (size_t i = 0; i < rows; ++i)
-    if (is_lo(m, i)) s[i] += 0.5 * sy / sum_y, y[i] += 0.5 * sy / sum_s;
+  if (sum_s > 0 && sum_y > 0)
+    for (size_t i = 0; i < rows; ++i)
+      if (is_lo(m, i)) s[i] += 0.5 * sy / sum_y, y[i] += 0.5 * sy / sum_s;
   std::vector<double> dx, ds(rows), dy(rows), dxa, dsa(rows), dya(rows), adx;
   // The direction for complementarity target rc (per LO row): ds, dy from dx.
   auto direction = [&](double beta, std::vector<double>& dxo, std::vector<double>& dso, std::vector<double>& dyo) {
@@ -278,7 +277,6 @@ bool solve_interior(Model& m) {
       dual_met = dual_met && std::abs(rd[j]) <= 1e-2 * (kDualEps + kDualRel * size[j]);
       x_max = std::max(x_max, std::abs(x[j]));
     }
-    if (getenv("IPM_DEBUG")) fprintf(stderr, "ipm %d rp %.2e mu %.2e xmax %.2e dual %d\n", iter, rp_max, mu, x_max, (int)dual_met);
     if (!std::isfinite(mu) || x_max > kDiverged) return false;
     if (rp_max < 1e-2 * kPrimalEps && dual_met && mu < 1e-14) break;
     for (size_t i = 0; i < rows; ++i) w[i] = is_fx(m, i) ? 1.0 / kDelta : is_lo(m, i) ? y[i] / s[i] : 0.0;
@@ -346,7 +344,6 @@ bool solve_interior(Model& m) {
       return true;
     }
   }
-  if (getenv("IPM_DEBUG")) fprintf(stderr, "face not followed; own optimum %d\n", (int)optimal(m, x, y, ax));
   // Where the face could not be followed, the interior point's own optimum, if it is one.
   if (!optimal(m, x, y, ax)) return false;
   v.dual = y;
