@@ -78,6 +78,24 @@ TEST(CaseFile, AboutDefaultsToTheSupportCentroid) {
   EXPECT_NEAR(c.motion.supports[0].about.y(), -0.25, 1e-12);
 }
 
+// A support turning about a point of the scene carries its points on a lever of at most the
+// scene's size (the rule's measure of the arc the scene turns through); about a hinge outside the
+// scene, on the hinge's distance from them: a point of the scene 3 m left of a hinge at (5, 0)
+// travels 3 m per rad, one at its far end 7 m; the rule counts the size (4 m: the ground's width)
+// plus the hinge's distance outside the scene's bounds (3 m), 7 m.
+TEST(CaseFile, ASupportTurningAboutAFarHingeTravelsOnItsLever) {
+  const std::string motion = R"(, "motion": {"supports": [{"block": "ground", "rotation": 2, "translation": [0, -1], "about": [X, 0]}]})";
+  auto with_about = [&](const char* x) {
+    std::string m = motion;
+    m.replace(m.find('X'), 1, x);
+    return parse_case(with_blocks(std::string(kGround) + R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1})", m), "m.json");
+  };
+  EXPECT_NEAR(support_travel_per_d(with_about("0")), 1 + 2 * 4.0, 1e-12);   // inside: the scene's size
+  EXPECT_NEAR(support_travel_per_d(with_about("2")), 1 + 2 * 4.0, 1e-12);   // on its edge
+  EXPECT_NEAR(support_travel_per_d(with_about("5")), 1 + 2 * 7.0, 1e-12);   // 3 m outside
+  EXPECT_NEAR(support_travel_per_d(with_about("-6")), 1 + 2 * 8.0, 1e-12);  // 4 m outside, left
+}
+
 const std::string kBlock = R"(, {"id": "b", "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]], "density": 1000})";
 
 TEST(CaseErrors, FewerThanThreeVertices) {
