@@ -284,6 +284,19 @@ std::vector<Piece> blocks_of(const std::string& path, const DxfDrawing& d, doubl
                       "') lies in no block: ignored");
   }
   if (stray > kStrayTextsListed) notes.push_back(std::to_string(stray - kStrayTextsListed) + " more texts lie in no block: ignored");
+  // An id the case loader would refuse ('/' or ':' make joint names ambiguous) is refused here,
+  // naming the entity that holds it: renaming it for the user would leave the drawing, the
+  // fragment that names its blocks and the results calling one block by two names.
+  for (size_t i = 0; i < out.size(); ++i) {
+    const std::string fault = id_fault(out[i].id);
+    if (fault.empty()) continue;
+    const std::string block = "(the block of layer '" + printable(out[i].layer) + "', entity " + printable(out[i].handle) + ")";
+    if (named_by[i])
+      throw CaseError(path + ":" + std::to_string(named_by[i]->e.line) + ": " + named_by[i]->e.name() + ": the id '" + printable(out[i].id) +
+                      "' it gives " + block + " " + fault + ": rename it in the drawing");
+    throw CaseError(path + ": layer '" + printable(out[i].layer) + "', entity " + printable(out[i].handle) + ": the id '" + printable(out[i].id) +
+                    "' made from the layer's name " + fault + ": rename the layer, or name the block by a text inside it");
+  }
   return out;
 }
 

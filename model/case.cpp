@@ -153,6 +153,13 @@ std::string printable(const std::string& text, size_t max) {
   return out;
 }
 
+std::string id_fault(const std::string& id) {
+  for (const char sep : {'/', ':'})
+    if (id.find(sep) != std::string::npos)
+      return std::string("holds '") + sep + "', which an id may not (joints are named BLOCK/BLOCK and their corners BLOCK/BLOCK:A)";
+  return "";
+}
+
 namespace {
 
 // The case format's reader: the shared strict field checks (model/fields.hpp), and what only a
@@ -255,6 +262,8 @@ Case parse_case(const std::string& text, const std::string& source) {
     Block b;
     if (!jb.contains("id") || !jb["id"].is_string() || jb["id"].get<std::string>().empty()) r.fail(where, "field 'id' must be a non-empty string");
     b.id = jb["id"].get<std::string>();
+    if (const std::string fault = id_fault(b.id); !fault.empty())
+      r.fail("block #" + std::to_string(i) + " '" + printable(b.id) + "'", "field 'id' " + fault);
     if (!ids.insert(b.id).second) r.fail(where, "field 'id': duplicate id");
     if (!jb.contains("vertices") || !jb["vertices"].is_array()) r.fail(where, "field 'vertices' must be an array of [x, y]");
     for (const json& v : jb["vertices"]) {

@@ -206,20 +206,12 @@ void start_from(Model& m, const PrdStart& start) {
 
 void hold_corners(Model& m, const std::vector<std::string>& names) {
   for (const std::string& want : names) {
+    // A name is one corner's: the case loader refuses ids holding '/' or ':' (id_fault), which
+    // could give two joints one name.
     bool found = false;
-    int pair_i = -1, pair_j = -1;
     for (size_t e = 0; e < m.ends.size(); ++e) {
       const Interface& jt = m.joints[m.ends[e].joint];
       if (corner_name(*m.c, jt.i, jt.j, m.ends[e].corner) != want) continue;
-      // Ids may hold '/' (a drawing's text can be anything): blocks 'a' and 'b/c' and blocks
-      // 'a/b' and 'c' both name their joint a/b/c, and holding both was silent.
-      if (found && (jt.i != pair_i || jt.j != pair_j))
-        throw std::runtime_error(m.c->source + ": prd: field 'hold_closed': '" + printable(want) + "' names corners of two joints ('" +
-                                 printable(m.c->blocks[pair_i].id) + "' with '" + printable(m.c->blocks[pair_j].id) + "', '" +
-                                 printable(m.c->blocks[jt.i].id) + "' with '" + printable(m.c->blocks[jt.j].id) +
-                                 "'): rename a block so that no id holds '/'");
-      pair_i = jt.i;
-      pair_j = jt.j;
       m.ends[e].held = found = true;
     }
     if (!found)

@@ -358,7 +358,7 @@ TEST(CasesImport, MtextFormattingCodesAreNotPartOfTheId) {
   const std::string texts =
       "0\nMTEXT\n5\n50\n8\nMASONRY\n10\n0.5\n20\n0.5\n1\n\\A1;{\\fArial|b1;Pier\\P2}\n"
       "0\nMTEXT\n5\n51\n8\nMASONRY\n10\n1.5\n20\n0.5\n3\n{\\H0.5x;\\C1;\\Q15;\\W0.8;\\T1.1;\\c255;\\pxqc;arch \\{1\\}\\~\\LA\\l\\O\\o\\K\\k\n"
-      "1\n\\~\\S1^2;\\P\\Ppi\\U+00E8ce\\\\x}\n"
+      "1\n\\~\\P\\Ppi\\U+00E8ce\\\\x}\n"
       "0\nTEXT\n5\n52\n8\nSUPPORT\n10\n0\n20\n-0.2\n1\nsol\\P1\n";
   Scratch dir("mtext");
   test::write(dir.path / "m.dxf", dxf({rect("SUPPORT", -2, -0.5, 3, 0), rect("MASONRY", 0, 0, 1, 1), rect("MASONRY", 1, 0, 2, 1)}, 6, texts));
@@ -368,8 +368,32 @@ TEST(CasesImport, MtextFormattingCodesAreNotPartOfTheId) {
   EXPECT_EQ(c.blocks[0].id, "sol\\P1");
   EXPECT_EQ(c.blocks[1].id, "Pier 2");
   EXPECT_EQ(c.blocks[2].id,
-            "arch {1} A 1/2 pi\xc3\xa8"
+            "arch {1} A pi\xc3\xa8"
             "ce\\x");
+}
+
+// Ids may not hold '/' or ':' (the case loader's rule: joints are named BLOCK/BLOCK, corners
+// BLOCK/BLOCK:A), and an MTEXT's stacked fraction \S1^2; reads 1/2: the import refuses such an
+// id, naming the text entity that gives it (its line and handle) and the block it names; a
+// block named after a layer whose name holds one is refused naming the layer.
+TEST(CasesImport, AnIdHoldingASeparatorOfJointNamesIsRefusedWhereTheDrawingGivesIt) {
+  const std::string stacked = "0\nMTEXT\n5\n50\n8\nMASONRY\n10\n0.5\n20\n0.5\n1\nPier \\S1^2;\n";
+  const std::string text = dxf({rect("SUPPORT", -2, -0.5, 3, 0), rect("MASONRY", 0, 0, 1, 1)}, 6, stacked);
+  // The entity's line is that of its group code 0, the line before "MTEXT".
+  const long line = std::count(text.begin(), text.begin() + long(text.find("\nMTEXT\n")), '\n') + 1;
+  std::string msg = import_error(text);
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  EXPECT_NE(msg.find("d.dxf:" + std::to_string(line) +
+                     ": MTEXT (handle 50, layer 'MASONRY'): the id 'Pier 1/2' it gives (the block of layer 'MASONRY', entity 41) holds '/'"),
+            std::string::npos)
+      << msg;
+  msg =
+      import_error(dxf({rect("SUPPORT", -2, -0.5, 3, 0), rect("MASONRY", 0, 0, 1, 1)}, 6, "0\nTEXT\n5\n51\n8\nMASONRY\n10\n0.5\n20\n0.5\n1\nv:1\n"));
+  EXPECT_NE(msg.find("TEXT (handle 51, layer 'MASONRY'): the id 'v:1' it gives (the block of layer 'MASONRY', entity 41) holds ':'"),
+            std::string::npos)
+      << msg;
+  msg = import_error(dxf({rect("SUPPORT", -2, -0.5, 3, 0), rect("WALL/EAST", 0, 0, 1, 1)}));
+  EXPECT_NE(msg.find("d.dxf: layer 'WALL/EAST', entity 41: the id 'WALL/EAST-1' made from the layer's name holds '/'"), std::string::npos) << msg;
 }
 
 // DXF writes entity types in upper case and the reader takes them as written: a 'lwpolyline' was

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "model/interfaces.hpp"
@@ -206,6 +208,33 @@ TEST(CaseErrors, DuplicateIdsAndWrongFormat) {
   expect_error(with_blocks(std::string(kGround) + kBlock + R"(, {"id": "b", "vertices": [[0, 1], [1, 1], [1, 2], [0, 2]], "density": 1})"),
                {"block 'b'", "duplicate"});
   expect_error(R"({"format": "other/2", "blocks": []})", {"format"});
+}
+
+// Joints are named BLOCK/BLOCK and corners BLOCK/BLOCK:A (README, "Case files"): blocks 'a' on
+// 'b/c' and 'a/b' on 'c' named two joints a/b/c, and only --hold noticed, at run time. An id
+// holding '/' or ':' is refused by the loader, naming the block by index and id and the field.
+TEST(CaseErrors, AnIdHoldingASeparatorOfJointNamesIsRefused) {
+  const std::string g = R"({"id": "g", "vertices": [[-1, -0.1], [2, -0.1], [2, 0], [-1, 0]], "support": true})";
+  const auto block = [](const std::string& id, double x, double y) {
+    std::ostringstream o;
+    o << R"({"id": ")" << id << R"(", "vertices": [[)" << x << ", " << y << "], [" << x + 0.2 << ", " << y << "], [" << x + 0.2 << ", " << y + 0.4
+      << "], [" << x << ", " << y + 0.4 << R"(]], "density": 2000})";
+    return o.str();
+  };
+  const std::string ambiguous = g + ", " + block("a", 0, 0) + ", " + block("b/c", 0, 0.4) + ", " + block("a/b", 1, 0) + ", " + block("c", 1, 0.4);
+  expect_error(with_blocks(ambiguous), {"bad.json: block #2 'b/c': field 'id' holds '/'"});
+  expect_error(with_blocks(g + ", " + block("v:A", 0, 0)), {"bad.json: block #1 'v:A': field 'id' holds ':'"});
+  expect_error(with_blocks(g + ", " + block("x", 0, 0) + ", " + block("y/", 0, 0.4)), {"block #2 'y/': field 'id'"});
+  // Any other text is an id (a drawing's "Pier 2", markup, non-ASCII), and then each corner name
+  // splits at its one '/' and one ':' into the joint's two ids: the names are the joints'.
+  const Case c = parse_case(with_blocks(g + ", " + block("Pier 2", 0, 0) + ", " + block("<b>&\u00e8", 0, 0.4)), "ok.json");
+  for (const Interface& j : detect_interfaces(c, c.prd.contact_tolerance)) {
+    const std::string name = corner_name(c, j.i, j.j, 1);
+    ASSERT_EQ(std::count(name.begin(), name.end(), '/'), 1) << name;
+    ASSERT_EQ(std::count(name.begin(), name.end(), ':'), 1) << name;
+    EXPECT_EQ(name.substr(0, name.find('/')), c.blocks[j.i].id);
+    EXPECT_EQ(name.substr(name.find('/') + 1, name.find(':') - name.find('/') - 1), c.blocks[j.j].id);
+  }
 }
 
 TEST(CaseErrors, MissingFileIsOneLine) {

@@ -92,32 +92,5 @@ TEST(PrdHold, ACornerNoJointHasIsRefusedNamingTheField) {
   EXPECT_THROW(with_option(load_case(kArch), "prd.hold_closed", std::vector<std::string>{"v3"}), CaseError);
 }
 
-// Ids may hold '/': blocks 'a' on 'b/c' and 'a/b' on 'c' both name their joint a/b/c. Holding
-// that name held both corners, silently; it is refused naming both joints.
-TEST(PrdHold, ANameTwoJointsShareIsRefused) {
-  const std::string text = R"({"format": "masonry-case/1", "name": "ambiguous ids", "blocks": [
-    {"id": "g", "vertices": [[-1, -0.1], [2, -0.1], [2, 0], [-1, 0]], "support": true},
-    {"id": "a", "vertices": [[0, 0], [0.2, 0], [0.2, 0.4], [0, 0.4]], "density": 2000},
-    {"id": "b/c", "vertices": [[0, 0.4], [0.2, 0.4], [0.2, 0.8], [0, 0.8]], "density": 2000},
-    {"id": "a/b", "vertices": [[1, 0], [1.2, 0], [1.2, 0.4], [1, 0.4]], "density": 2000},
-    {"id": "c", "vertices": [[1, 0.4], [1.2, 0.4], [1.2, 0.8], [1, 0.8]], "density": 2000}],
-    "motion": {"step": 0.01, "max_steps": 10, "supports": [{"block": "g", "rotation": 1.0, "about": [0, 0]}]}})";
-  const Case c = parse_case(text, "ambig.json");
-  const Case held = with_option(c, "prd.hold_closed", std::vector<std::string>{"a/b/c:A"});
-  try {
-    prd_run(held, PrdSettings::from_case(held));
-    ADD_FAILURE() << "held an ambiguous corner name";
-  } catch (const std::runtime_error& e) {
-    const std::string msg = e.what();
-    EXPECT_EQ(msg.rfind("ambig.json", 0), 0u) << msg;
-    EXPECT_NE(msg.find("prd: field 'hold_closed': 'a/b/c:A' names corners of two joints"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("'a' with 'b/c'"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("'a/b' with 'c'"), std::string::npos) << msg;
-  }
-  // A name only one joint has is held as before.
-  const Case one = with_option(c, "prd.hold_closed", std::vector<std::string>{"g/a:A"});
-  EXPECT_NO_THROW(prd_run(one, PrdSettings::from_case(one)));
-}
-
 }  // namespace
 }  // namespace masonry

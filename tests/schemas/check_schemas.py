@@ -276,6 +276,8 @@ def main():
     refuses("case", dict(case, colour="red"), "an unknown field")
     refuses("case", {k: v for k, v in case.items() if k != "format"}, "a case without its format")
     refuses("case", dict(case, blocks=[{"id": "b", "vertices": [[0, 0], [1, 0], [1, 1]]}]), "a free block without density")
+    for sep in "/:":
+        refuses("case", dict(case, blocks=[dict(case["blocks"][0], id="a" + sep + "b")] + case["blocks"][1:]), "an id holding '" + sep + "'")
     cat = load(catalogue)
     bad = json.loads(json.dumps(cat))
     del bad["benchmarks"][0]["methods"]["prd"]["tolerance"]["why"]
