@@ -104,7 +104,7 @@ struct Failure {
 // the case leaves a default, and the motion's increment.
 void record_settings(Run& u) {
   const DemSettings& s = u.s;
-  u.r.settings = echo_options<DemOptions>(s);
+  u.r.settings = valued_options<DemOptions>(s);
   set_setting(u.r.settings, &DemOptions::kn, u.m.kn());
   set_setting(u.r.settings, &DemOptions::ks, u.m.ks());
   set_setting(u.r.settings, &DemOptions::collapse_drift, u.lim.collapse_drift);

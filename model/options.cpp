@@ -70,8 +70,7 @@ const Option<PrdOptions> kPrdRows[] = {
      .member = &PrdOptions::adaptive,
      .help = "Event-driven steps: long while the mechanism holds, each event (a corner opening or closing, collapse) located "
              "within event_tolerance",
-     .flag = "--adaptive",
-     .in_results = Shown::when_set},
+     .flag = "--adaptive"},
     {.name = "event_tolerance",
      .member = &PrdOptions::event_tolerance,
      .unit = "m",
@@ -79,8 +78,7 @@ const Option<PrdOptions> kPrdRows[] = {
      .note = "0: 1e-4 of the scene size",
      .scene = {kFinestFraction, 0.1},
      .help = "With adaptive: how closely events are located",
-     .flag = "--event-tolerance",
-     .in_results = Shown::when_set},
+     .flag = "--event-tolerance"},
     {.name = "max_step",
      .member = &PrdOptions::max_step,
      .unit = "m",
@@ -89,14 +87,12 @@ const Option<PrdOptions> kPrdRows[] = {
              "tolerance",
      .scene = {kFinestFraction, 1},
      .help = "With adaptive: the longest step",
-     .flag = "--max-step",
-     .in_results = Shown::when_set},
+     .flag = "--max-step"},
     {.name = "sliding_check",
      .member = &PrdOptions::sliding_check,
      .help = "The sliding check on every step: the friction demand of the joint forces and the least friction angle an "
              "admissible force state needs (results: \"sliding\" in each step and at the top)",
-     .flag = "--sliding",
-     .in_results = Shown::when_set},
+     .flag = "--sliding"},
     {.name = "hold_closed",
      .member = &PrdOptions::hold_closed,
      .note = "a joint corner BLOCK/BLOCK:A or :B, as results name them",
@@ -105,8 +101,7 @@ const Option<PrdOptions> kPrdRows[] = {
              "tension): the next mechanism's capacity where two are near-tied (dem/README.md, \"The branch X\")",
      .flag = "--hold",
      .on_compare = true,
-     .in_case = Shown::when_set,
-     .in_results = Shown::when_set},
+     .in_case = Shown::when_set},
 };
 
 const Option<DemOptions> kDemRows[] = {
@@ -225,8 +220,7 @@ const Option<DemOptions> kDemRows[] = {
              "reproduce becomes an equilibrium and the run goes on (dem/README.md, \"Protocol\", stage 4)",
      .flag = "--confirm-collapse",
      .on_compare = true,
-     .in_case = Shown::when_set,
-     .in_results = Shown::always},
+     .in_case = Shown::when_set},
     {.name = "hold_damping",
      .member = &DemOptions::hold_damping,
      .words = kHoldDampingNames,
@@ -567,14 +561,6 @@ void write_options(ordered_json& obj, const S& s) {
 }
 
 template <class S>
-ordered_json echo_options(const S& s) {
-  ordered_json obj = ordered_json::object();
-  for (const Option<S>& o : options<S>().rows)
-    if (shown(o, s, o.in_results)) put(obj, o, s);
-  return obj;
-}
-
-template <class S>
 ordered_json valued_options(const S& s) {
   ordered_json obj = ordered_json::object();
   for (const Option<S>& o : options<S>().rows)
@@ -587,7 +573,6 @@ ordered_json valued_options(const S& s) {
   template void check_options<S>(const S&, const std::string&, bool);                                     \
   template void check_scene_options<S>(const S&, double, const std::string&);                             \
   template void write_options<S>(ordered_json&, const S&);                                                \
-  template ordered_json echo_options<S>(const S&);                                                        \
   template ordered_json valued_options<S>(const S&);
 MASONRY_OPTION_SECTION(Case)
 MASONRY_OPTION_SECTION(Motion)

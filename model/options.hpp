@@ -62,8 +62,7 @@ struct Option {
   const char* help = "";             // one line: what the option does
   const char* flag = "";             // "--kinetic-ratio"; "": none
   bool on_compare = false;           // the flag is on `compare` as well as on its method's command
-  Shown in_case = Shown::always;     // case_to_json
-  Shown in_results = Shown::always;  // results.json's settings
+  Shown in_case = Shown::always;     // case_to_json (results.json's settings give every option: valued_options)
 };
 
 // A section of the case file: its name ("dem"; "" for the case's own fields, written at the top
@@ -144,12 +143,10 @@ void check_scene_options(const S& s, double L, const std::string& source);
 // The section as case_to_json writes it (Option::in_case) into `obj`, after what it holds.
 template <class S>
 void write_options(nlohmann::ordered_json& obj, const S& s);
-// The section as results.json's settings echo it (Option::in_results), as the case set it.
-template <class S>
-nlohmann::ordered_json echo_options(const S& s);
-
 // Every option of the section that has a value (all but an optional number left absent, which
-// a run derives when it starts), as the writers give them: what Python's case[key] reads.
+// a run derives when it starts), as the writers give them, defaults included: the settings
+// results.json echoes (both methods, so a results file says everything its run used, not only
+// what the case changed) and what Python's case[key] reads.
 template <class S>
 nlohmann::ordered_json valued_options(const S& s);
 

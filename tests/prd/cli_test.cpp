@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "model/options.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -94,6 +96,24 @@ TEST(Cli, PrdOptionsOverrideTheCase) {
   EXPECT_EQ(j["stable_steps"], 7);
   EXPECT_NEAR(j["capacity"].get<double>(), 0.035, 1e-12);
   EXPECT_EQ(j["settings"]["contact_tolerance"].get<double>(), 1e-6);
+}
+
+// results.json's settings give every setting the run used, defaults included, as the DEM's do: a
+// case that sets no PRD option echoed only step and max_steps, so a results file did not say
+// whether it was adaptive, checked sliding or held corners. Expected: the defaults of README.md's
+// options table ("Options"), and every option of the prd section.
+TEST(Cli, PrdSettingsEchoEveryOptionWithItsDefault) {
+  const fs::path c = write_case("block.json", kBlock);
+  const fs::path out = c.parent_path() / "out-prd-defaults";
+  const CmdResult r = run("prd " + c.string() + " --out " + out.string() + " --max-steps 3 --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(out / "results.json");
+  const auto settings = nlohmann::json::parse(in)["settings"];
+  const nlohmann::json expected = {
+      {"step", 0.01},           {"max_steps", 3},  {"contact_tolerance", 1e-5}, {"adaptive", false},
+      {"event_tolerance", 0.0}, {"max_step", 0.0}, {"sliding_check", false},    {"hold_closed", nlohmann::json::array()}};
+  EXPECT_EQ(settings, expected) << settings.dump();
+  for (const auto& o : masonry::options<masonry::PrdOptions>().rows) EXPECT_TRUE(settings.contains(o.name)) << o.name;
 }
 
 TEST(Cli, CheckPrintsOneJsonObject) {
