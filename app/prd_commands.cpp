@@ -151,7 +151,10 @@ void add_prd_commands(CLI::App& app, Commands& out) {
     out.push_back({sub, [=]() {
                      const Case c = settings->apply(load_case(*path));
                      PrdSettings s = PrdSettings::from_case(c);
-                     if (*friction >= 0) s.sliding_check = true;
+                     if (*friction >= 0) {
+                       s.sliding_check = true;
+                       s.friction_angle = *friction;
+                     }
                      if (!from->empty()) s.start = start_of(c, *from, *from_d, *offsets);
                      warn_lp_cost(c, "prd", 1e-6);
                      for (const std::string& line : idle_options(c.prd)) std::cerr << "prd: note: " << line << "\n";

@@ -42,6 +42,10 @@ struct PrdSettings : PrdOptions {
   double step = 0.001;            // increment of d per step, m
   int max_steps = 1000;           // the run ends after max_steps steps (at d = max_steps * step from the start)
   std::optional<PrdStart> start;  // absent: from the case's own geometry at d = 0
+  // deg: the friction angle `masonry prd --friction-angle` judges the sliding check against (the
+  // first step and joint needing more, on stderr). The run does not use it; its results' settings
+  // record it, so a results file says which angle its sliding report was made for. Absent: none.
+  std::optional<double> friction_angle;
   static PrdSettings from_case(const Case& c);
 };
 

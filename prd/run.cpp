@@ -415,12 +415,14 @@ RunResult prd_run(const Case& c, const PrdSettings& s, const std::function<void(
   r.case_name = c.name;
   Walk w(c, s);
   r.capacity = w.d0;  // a start that is unstable as it stands: no stable configuration beyond it
-  // The motion's increment, every option with its value, defaults included (model/options.cpp), the start, and
-  // where the steps are event-driven, the tolerance and longest step the run derived.
+  // The motion's increment, every option with its value, defaults included (model/options.cpp), the
+  // start, the friction angle of the sliding report asked for, and where the steps are
+  // event-driven, the tolerance and longest step the run derived.
   set_setting(r.settings, &Motion::step, s.step);
   set_setting(r.settings, &Motion::max_steps, s.max_steps);
   r.settings.update(valued_options<PrdOptions>(s));
   if (s.start) r.settings["start"] = {{"d", s.start->d}, {"offsets", start_offsets_name(s.start->offsets)}, {"from", s.start->source}};
+  if (s.friction_angle) r.settings["friction_angle"] = *s.friction_angle;
   if (s.adaptive) {
     set_setting(r.settings, &PrdOptions::event_tolerance, w.tol_ev);
     set_setting(r.settings, &PrdOptions::max_step, w.h_max);

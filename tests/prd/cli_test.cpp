@@ -116,6 +116,21 @@ TEST(Cli, PrdSettingsEchoEveryOptionWithItsDefault) {
   for (const auto& o : masonry::options<masonry::PrdOptions>().rows) EXPECT_TRUE(settings.contains(o.name)) << o.name;
 }
 
+// `--friction-angle DEG` was said on stderr only: a results file did not tell which angle its
+// sliding report judged against. Its settings record the flag's value, and the sliding check it
+// implies (README, the prd row).
+TEST(Cli, PrdFrictionAngleIsRecordedInTheSettings) {
+  const fs::path c = write_case("block.json", kBlock);
+  const fs::path out = c.parent_path() / "out-prd-friction";
+  const CmdResult r = run("prd " + c.string() + " --out " + out.string() + " --max-steps 3 --friction-angle 27.5");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("needs more than 27.5 deg of friction"), std::string::npos) << r.err;
+  std::ifstream in(out / "results.json");
+  const auto settings = nlohmann::json::parse(in)["settings"];
+  EXPECT_EQ(settings["friction_angle"].get<double>(), 27.5) << settings.dump();
+  EXPECT_EQ(settings["sliding_check"].get<bool>(), true) << settings.dump();
+}
+
 TEST(Cli, CheckPrintsOneJsonObject) {
   const fs::path c = write_case("block.json", kBlock);
   const CmdResult r = run("check " + c.string() + " --json");
