@@ -84,15 +84,15 @@ void add_case_commands(CLI::App& app, Commands& out) {
       switch (p.kind) {
         case ParameterKind::number:
           slot.number = p.value;
-          gc.app->add_option(flag, slot.number, p.help)->capture_default_str();
+          gc.app->add_option(flag, slot.number, parameter_help(p))->capture_default_str();
           break;
         case ParameterKind::integer:
           slot.integer = static_cast<int>(p.value);
-          gc.app->add_option(flag, slot.integer, p.help)->capture_default_str();
+          gc.app->add_option(flag, slot.integer, parameter_help(p))->capture_default_str();
           break;
         case ParameterKind::flag:
           slot.flag = p.value != 0;
-          gc.app->add_flag(flag, slot.flag, p.help);
+          gc.app->add_flag(flag, slot.flag, parameter_help(p));
           break;
       }
     }

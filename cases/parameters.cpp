@@ -20,31 +20,31 @@ struct Binding {
 };
 
 template <class P>
-Binding<P> number(const P& d, const char* name, double P::*field, const char* help) {
-  return {{name, ParameterKind::number, help, d.*field}, [field](P& p, double v) { p.*field = v; }};
+Binding<P> number(const P& d, const char* name, double P::*field, const char* help, const char* unit) {
+  return {{name, ParameterKind::number, help, d.*field, unit}, [field](P& p, double v) { p.*field = v; }};
 }
 
 template <class P>
 Binding<P> integer(const P& d, const char* name, int P::*field, const char* help) {
-  return {{name, ParameterKind::integer, help, double(d.*field)}, [field](P& p, double v) { p.*field = static_cast<int>(v); }};
+  return {{name, ParameterKind::integer, help, double(d.*field), ""}, [field](P& p, double v) { p.*field = static_cast<int>(v); }};
 }
 
 template <class P>
 Binding<P> flag(const P& d, const char* name, bool P::*field, const char* help) {
-  return {{name, ParameterKind::flag, help, d.*field ? 1.0 : 0.0}, [field](P& p, double v) { p.*field = v != 0; }};
+  return {{name, ParameterKind::flag, help, d.*field ? 1.0 : 0.0, ""}, [field](P& p, double v) { p.*field = v != 0; }};
 }
 
 // The angle of embrace in degrees (the struct holds radians), converted as the command line
 // always did: degrees * (pi / 180).
 template <class P>
-Binding<P> embrace_deg(double deg, const char* help) {
-  return {{"embrace-deg", ParameterKind::number, help, deg}, [](P& p, double v) { p.embrace = v * kDeg; }};
+Binding<P> embrace_deg(double deg, const char* help, const char* unit) {
+  return {{"embrace-deg", ParameterKind::number, help, deg, unit}, [](P& p, double v) { p.embrace = v * kDeg; }};
 }
 
 // --fixed: no support motion (the struct's `spreading` is its negation).
 template <class P>
 Binding<P> fixed(const P& d) {
-  return {{"fixed", ParameterKind::flag, "No support motion", d.spreading ? 0.0 : 1.0}, [](P& p, double v) { p.spreading = v == 0; }};
+  return {{"fixed", ParameterKind::flag, "No support motion", d.spreading ? 0.0 : 1.0, ""}, [](P& p, double v) { p.spreading = v == 0; }};
 }
 
 // A generator from its bindings; `build` writes the case from the struct, `standard` (when not
@@ -69,65 +69,65 @@ CaseGenerator generator(const std::string& name, const std::string& summary, con
 
 std::vector<Binding<CircularArch>> circular_arch_bindings(const CircularArch& d) {
   using P = CircularArch;
-  return {number(d, "radius", &P::radius, "Centreline radius R, m"),
-          number(d, "thickness", &P::thickness, "Thickness t, m"),
-          embrace_deg<P>(d.embrace / kDeg, "Angle of embrace, degrees"),
+  return {number(d, "radius", &P::radius, "Centreline radius R", "m"),
+          number(d, "thickness", &P::thickness, "Thickness t", "m"),
+          embrace_deg<P>(d.embrace / kDeg, "Angle of embrace", "deg"),
           integer(d, "voussoirs", &P::voussoirs, "Number of voussoirs"),
-          number(d, "depth", &P::depth, "Out-of-plane depth, m"),
-          number(d, "density", &P::density, "Density, kg/m3"),
-          number(d, "step", &P::step, "Support displacement per step, m"),
+          number(d, "depth", &P::depth, "Out-of-plane depth", "m"),
+          number(d, "density", &P::density, "Density", "kg/m^3"),
+          number(d, "step", &P::step, "Support displacement per step", "m"),
           integer(d, "max-steps", &P::max_steps, "Largest number of steps"),
           fixed(d)};
 }
 
 std::vector<Binding<PointedArch>> pointed_arch_bindings(const PointedArch& d) {
   using P = PointedArch;
-  return {number(d, "rcirc", &P::rcirc, "Centreline radius of the equivalent circular arch Rcirc, m"),
-          number(d, "eccentricity", &P::eccentricity, "Eccentricity e of the two centres from the axis, m (Rpoint = Rcirc + e)"),
-          number(d, "thickness", &P::thickness, "Thickness t, m"),
-          embrace_deg<P>(150.0, "Angle of embrace (between the springing joints), degrees"),
+  return {number(d, "rcirc", &P::rcirc, "Centreline radius of the equivalent circular arch Rcirc", "m"),
+          number(d, "eccentricity", &P::eccentricity, "Eccentricity e of the two centres from the axis (Rpoint = Rcirc + e)", "m"),
+          number(d, "thickness", &P::thickness, "Thickness t", "m"),
+          embrace_deg<P>(150.0, "Angle of embrace (between the springing joints)", "deg"),
           integer(d, "voussoirs", &P::voussoirs, "Number of voussoirs (even: crown joint on the axis; odd: keystone)"),
-          number(d, "depth", &P::depth, "Out-of-plane depth, m"),
-          number(d, "density", &P::density, "Density, kg/m3"),
-          number(d, "step", &P::step, "Support displacement per step, m"),
+          number(d, "depth", &P::depth, "Out-of-plane depth", "m"),
+          number(d, "density", &P::density, "Density", "kg/m^3"),
+          number(d, "step", &P::step, "Support displacement per step", "m"),
           integer(d, "max-steps", &P::max_steps, "Largest number of steps"),
           fixed(d)};
 }
 
 std::vector<Binding<GothicCathedral>> cathedral_bindings(const GothicCathedral& d) {
   using P = GothicCathedral;
-  return {number(d, "nave-height", &P::nave_height, "Intrados crown of the nave arch, m"),
-          number(d, "aisle-height", &P::aisle_height, "Intrados crown of the aisle arches, m"),
-          number(d, "bay", &P::bay, "Bay: out-of-plane depth of the arches (vaults), m"),
-          number(d, "nave-span", &P::nave_span, "Clear span of the nave between the piers, m"),
-          number(d, "pier-width", &P::pier_width, "Width of the nave pier shaft, m"),
-          number(d, "aisle-span", &P::aisle_span, "Clear span of the aisle arch, m"),
-          number(d, "buttress-width", &P::buttress_width, "Width of the outer buttress above the aisle springing, m"),
-          number(d, "nave-springing", &P::nave_springing, "Height of the nave arch's springing (pier top), m"),
-          number(d, "aisle-springing", &P::aisle_springing, "Height of the aisle arch's springing, m"),
-          number(d, "nave-thickness", &P::nave_thickness, "Nave arch thickness, m"),
-          number(d, "aisle-thickness", &P::aisle_thickness, "Aisle arch thickness, m"),
-          number(d, "flyer-thickness", &P::flyer_thickness, "Flying buttress thickness, m"),
-          number(d, "lower-flyer-head", &P::lower_flyer_head, "Lower flyer: intrados height at the pier, m"),
-          number(d, "lower-flyer-foot", &P::lower_flyer_foot, "Lower flyer: intrados height at the buttress, m"),
-          number(d, "upper-flyer-head", &P::upper_flyer_head, "Upper flyer: intrados height at the pier, m"),
+  return {number(d, "nave-height", &P::nave_height, "Intrados crown of the nave arch", "m"),
+          number(d, "aisle-height", &P::aisle_height, "Intrados crown of the aisle arches", "m"),
+          number(d, "bay", &P::bay, "Bay: out-of-plane depth of the arches (vaults)", "m"),
+          number(d, "nave-span", &P::nave_span, "Clear span of the nave between the piers", "m"),
+          number(d, "pier-width", &P::pier_width, "Width of the nave pier shaft", "m"),
+          number(d, "aisle-span", &P::aisle_span, "Clear span of the aisle arch", "m"),
+          number(d, "buttress-width", &P::buttress_width, "Width of the outer buttress above the aisle springing", "m"),
+          number(d, "nave-springing", &P::nave_springing, "Height of the nave arch's springing (pier top)", "m"),
+          number(d, "aisle-springing", &P::aisle_springing, "Height of the aisle arch's springing", "m"),
+          number(d, "nave-thickness", &P::nave_thickness, "Nave arch thickness", "m"),
+          number(d, "aisle-thickness", &P::aisle_thickness, "Aisle arch thickness", "m"),
+          number(d, "flyer-thickness", &P::flyer_thickness, "Flying buttress thickness", "m"),
+          number(d, "lower-flyer-head", &P::lower_flyer_head, "Lower flyer: intrados height at the pier", "m"),
+          number(d, "lower-flyer-foot", &P::lower_flyer_foot, "Lower flyer: intrados height at the buttress", "m"),
+          number(d, "upper-flyer-head", &P::upper_flyer_head, "Upper flyer: intrados height at the pier", "m"),
           flag(d, "upper-flyer-at-springing", &P::upper_flyer_at_springing,
                "Upper flyer's head top at the nave springing, whatever the springing and the flyer thickness (replaces --upper-flyer-head)"),
-          number(d, "upper-flyer-foot", &P::upper_flyer_foot, "Upper flyer: intrados height at the buttress, m"),
-          number(d, "buttress-height", &P::buttress_height, "Height of the outer buttress, m"),
-          number(d, "foundation-height", &P::foundation_height, "Height of the support blocks, m"),
-          number(d, "pier-depth", &P::pier_depth, "Out-of-plane depth of the piers, m"),
-          number(d, "buttress-depth", &P::buttress_depth, "Out-of-plane depth of the buttresses, m"),
-          number(d, "flyer-depth", &P::flyer_depth, "Out-of-plane depth of the flying buttresses, m"),
-          number(d, "density", &P::density, "Density, kg/m3"),
-          number(d, "course", &P::course, "Target course height of piers and buttresses, m"),
+          number(d, "upper-flyer-foot", &P::upper_flyer_foot, "Upper flyer: intrados height at the buttress", "m"),
+          number(d, "buttress-height", &P::buttress_height, "Height of the outer buttress", "m"),
+          number(d, "foundation-height", &P::foundation_height, "Height of the support blocks", "m"),
+          number(d, "pier-depth", &P::pier_depth, "Out-of-plane depth of the piers", "m"),
+          number(d, "buttress-depth", &P::buttress_depth, "Out-of-plane depth of the buttresses", "m"),
+          number(d, "flyer-depth", &P::flyer_depth, "Out-of-plane depth of the flying buttresses", "m"),
+          number(d, "density", &P::density, "Density", "kg/m^3"),
+          number(d, "course", &P::course, "Target course height of piers and buttresses", "m"),
           integer(d, "nave-voussoirs", &P::nave_voussoirs, "Voussoirs of the nave arch (even)"),
           integer(d, "aisle-voussoirs", &P::aisle_voussoirs, "Voussoirs of each aisle arch (even)"),
           integer(d, "flyer-voussoirs", &P::flyer_voussoirs, "Voussoirs of each flying buttress"),
           integer(d, "moving-support", &P::moving_support, "Support that moves, 1..4 from the left (3: third pier)"),
-          number(d, "settlement-step", &P::settlement_step, "Settlement of that support per step, m (down)"),
-          number(d, "rotation-step", &P::rotation_step, "Counter-clockwise rotation per step about its centroid, rad"),
-          number(d, "step", &P::step, "Path parameter d per step, m"),
+          number(d, "settlement-step", &P::settlement_step, "Settlement of that support per step, downwards", "m"),
+          number(d, "rotation-step", &P::rotation_step, "Counter-clockwise rotation per step about its centroid", "rad"),
+          number(d, "step", &P::step, "Path parameter d per step", "m"),
           integer(d, "max-steps", &P::max_steps, "Largest number of steps")};
 }
 
@@ -170,6 +170,8 @@ int parameter_index(const CaseGenerator& g, const std::string& name) {
     if (g.parameters[k].name == name) return static_cast<int>(k);
   return -1;
 }
+
+std::string parameter_help(const GeneratorParameter& p) { return p.help + (p.unit.empty() ? "" : ", " + p.unit); }
 
 std::string parameter_names(const CaseGenerator& g) {
   std::string s;

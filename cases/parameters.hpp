@@ -18,8 +18,11 @@ enum class ParameterKind { number, integer, flag };
 struct GeneratorParameter {
   std::string name;  // "thickness", "embrace-deg": the option --NAME, a sweep's generator.NAME
   ParameterKind kind = ParameterKind::number;
-  std::string help;  // meaning and unit (only names ending in -deg take degrees)
+  std::string help;  // meaning, without the unit (parameter_help adds it)
   double value = 0;  // the default (a flag: 0 or 1)
+  // The case format's units ("m", "kg/m^3", "rad"; "deg" for names ending in -deg); "" for a
+  // count or a flag. What the value is in wherever it is shown: --help, a validation threshold.
+  std::string unit;
 };
 
 struct CaseGenerator {
@@ -38,6 +41,8 @@ const std::vector<CaseGenerator>& case_generators();
 const CaseGenerator* find_case_generator(const std::string& name);
 // Index of parameter `name` in g.parameters, -1 when it has none of that name.
 int parameter_index(const CaseGenerator& g, const std::string& name);
+// The parameter's help line: its meaning and unit ("Thickness t, m").
+std::string parameter_help(const GeneratorParameter& p);
 // "radius, thickness, embrace-deg, ...": the names, for messages.
 std::string parameter_names(const CaseGenerator& g);
 

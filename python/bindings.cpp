@@ -347,7 +347,7 @@ py::list generator_list() {
       py::dict d;
       d["name"] = p.name;
       d["kind"] = p.kind == ParameterKind::number ? "number" : p.kind == ParameterKind::integer ? "integer" : "flag";
-      d["help"] = p.help;
+      d["help"] = parameter_help(p);
       d["default"] = p.kind == ParameterKind::flag      ? py::object(py::bool_(p.value != 0))
                      : p.kind == ParameterKind::integer ? py::object(py::int_(static_cast<long long>(p.value)))
                                                         : py::object(py::float_(p.value));

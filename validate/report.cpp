@@ -149,6 +149,13 @@ nlohmann::ordered_json validation_json(const Catalogue& cat, const std::vector<V
     // No NaN reaches a report: a row without a number says so.
     x["obtained"] = r.measured ? nlohmann::ordered_json(r.obtained) : nlohmann::ordered_json(nullptr);
     x["error"] = r.measured ? nlohmann::ordered_json(r.error()) : nlohmann::ordered_json(nullptr);
+    // Whether a structure stands is a yes or no, as the catalogue writes it (`"expected": true`):
+    // true or false, and no difference between them (pass says whether they agree).
+    if (b.quantity == Quantity::stands) {
+      x["expected"] = r.expected > 0;
+      if (r.measured) x["obtained"] = r.obtained > 0;
+      x["error"] = nullptr;
+    }
     x["tolerance"] = r.tolerance;
     x["pass"] = r.pass;
     x["applicable"] = r.applicable;

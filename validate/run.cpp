@@ -1,12 +1,15 @@
 // Running one benchmark: the quantity measured on each method, then judged.
 #include "runs/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
 #include <optional>
 #include <sstream>
 
+#include "cases/parameters.hpp"
+#include "model/options.hpp"
 #include "prd/prd.hpp"
 #include "validate/validate.hpp"
 
@@ -209,6 +212,22 @@ Measured measure_outside(const Catalogue& cat, const Benchmark& b, const Outside
   return from_run(b, c, *r);
 }
 
+// A threshold is in its parameter's own unit, from the one table that defines the parameter: a
+// case option's (model/options.cpp, as `masonry options` shows it; motion.step is d's, m or
+// rad), a generator parameter's (cases/parameters.cpp, the catalogue's name with '_' read as '-'
+// as Python's generate() reads it); "" for a ratio or a count.
+std::string threshold_unit(const Catalogue& cat, const Benchmark& b, Method m) {
+  const std::string& key = b.search->parameter;
+  if (key == option_key(&Motion::step)) return path_unit(benchmark_case(cat, b, m));
+  for (const OptionInfo& o : option_infos())
+    if (o.key == key) return o.unit;
+  std::string name = key;
+  std::replace(name.begin(), name.end(), '_', '-');
+  if (const CaseGenerator* g = find_case_generator(b.case_source.generator))
+    if (const int k = parameter_index(*g, name); k >= 0) return g->parameters[size_t(k)].unit;
+  return "";
+}
+
 std::string methods_of(const Benchmark& b) {
   std::string out;
   for (const MethodRun& m : b.methods) out += (out.empty() ? "" : " and ") + std::string(method_name(m.method));
@@ -228,8 +247,7 @@ std::vector<ValidationRow> run_benchmark(const Catalogue& cat, const Benchmark& 
   };
   const auto unit_of = [&](Method m) -> std::string {
     // std::string(...), not a literal: GCC 12 warns falsely on these assignments (PR105651).
-    if (b.quantity == Quantity::threshold && b.search->parameter.find("friction_angle") != std::string::npos) return std::string("deg");
-    if (b.quantity == Quantity::threshold && b.search->parameter == "thickness") return std::string("m");
+    if (b.quantity == Quantity::threshold) return threshold_unit(cat, b, m);
     if (b.quantity == Quantity::reaction && b.component == "moment") return std::string("N m");
     // A capacity is in d's unit: rad where every moving support only turns (a tilting slab).
     if (b.quantity == Quantity::capacity) return path_unit(benchmark_case(cat, b, m));

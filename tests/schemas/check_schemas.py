@@ -317,6 +317,12 @@ def main():
         refuses("validation", dict(validation, rows=[dict(row, obtained=None)]), "a row that passes without a number")
         refuses("validation", dict(validation, rows=[dict(row, quantity="capacity", unit="N")]), "a capacity in N")
         refuses("validation", dict(validation, rows=[dict(row, judged_as="toppling-py")]), "a row judged as no method")
+        # A threshold is in its parameter's unit: every unit an option has (`masonry options
+        # --markdown`, the unit column) is one the schema takes for a threshold.
+        for line in run(exe, "options", "--markdown").stdout.splitlines():
+            cells = [c.strip() for c in line.split("|")]
+            if len(cells) > 6 and cells[1].startswith("`") and cells[5] != "-":
+                check("validation", dict(validation, rows=[dict(row, quantity="threshold", unit=cells[5])]), f"a threshold in {cells[5]}")
 
     for p in problems:
         print(p)

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "common.hpp"
@@ -145,6 +146,34 @@ TEST(ValidateRun, ASearchThatDoesNotBracketTheThresholdFailsWithAReason) {
   EXPECT_NE(rows[0].note.find("stands at both ends"), std::string::npos) << rows[0].note;
 }
 
+// A threshold's unit was "m" for thickness, "deg" for a friction angle and "" for anything else:
+// it is its parameter's own, the case format's (README, "Options": gravity m/s^2, dem.kn Pa/m,
+// dem.damping none, motion.step rad where the supports only turn) or the generator's
+// (cases/README.md: radius m, the angle of embrace in degrees).
+TEST(ValidateRun, AThresholdIsInItsParametersOwnUnit) {
+  const auto threshold = [](const std::string& name, const std::string& case_json, const std::string& parameter, const std::string& range) {
+    return R"({"name": ")" + name + R"(", "title": "t", "source": "s", "case": )" + case_json + R"(, "options": {"motion.max_steps": 0},
+      "quantity": "threshold", "search": {"parameter": ")" +
+           parameter + R"(", "range": )" + range + R"(, "resolution": 0.1},
+      "expected": 1, "methods": {"prd": {"tolerance": {"absolute": 0.1, "why": "x"}}}})";
+  };
+  const std::string block = R"({"file": ")" + block_file() + R"("})";
+  const std::string arch = R"({"generator": "circular-arch", "parameters": {"thickness": 0.2, "max_steps": 0}})";
+  const std::string text = R"({"format": "masonry-catalogue/1", "benchmarks": [)" + threshold("gravity", block, "gravity", "[5, 20]") + ", " +
+                           threshold("kn", block, "dem.kn", "[1e9, 2e9]") + ", " + threshold("damping", block, "dem.damping", "[0.5, 0.6]") + ", " +
+                           threshold("step", block, "motion.step", "[0.01, 0.02]") + ", " + threshold("radius", arch, "radius", "[1, 2]") + ", " +
+                           threshold("embrace", arch, "embrace_deg", "[150, 160]") + "]}";
+  const Catalogue cat = parse_catalogue(text, "u.json", ".");
+  const std::map<std::string, std::string> expected = {{"gravity", "m/s^2"}, {"kn", "Pa/m"},  {"damping", ""},
+                                                       {"step", "rad"},      {"radius", "m"}, {"embrace", "deg"}};
+  RunCache cache;
+  for (const Benchmark& b : cat.benchmarks) {
+    const auto rows = run_benchmark(cat, b, cache);
+    ASSERT_EQ(rows.size(), 1u) << b.name;
+    EXPECT_EQ(rows[0].unit, expected.at(b.name)) << b.name;
+  }
+}
+
 TEST(ValidateRun, AGeneratorParameterItDoesNotKnowIsBadInput) {
   const std::string text = R"({"format": "masonry-catalogue/1", "benchmarks": [{"name": "arch", "title": "t", "source": "s",
     "case": {"generator": "circular-arch", "parameters": {"thickness": 0.12, "spreading": false, "max_steps": 0, "height": 2}},
@@ -175,6 +204,13 @@ TEST(ValidateCommand, ExitCodesTablesAndFiles) {
   EXPECT_EQ(j["rows"].size(), 4u);
   EXPECT_EQ(j["passed"], 4);
   EXPECT_NE(test::read(md).find("| block-topples | prd |"), std::string::npos);
+  // Whether it stands is written as the catalogue writes it, true or false, not 1.0 (and no error).
+  for (const auto& row : j["rows"])
+    if (row["benchmark"] == "arch-stands") {
+      EXPECT_EQ(row["expected"], true) << row.dump();
+      EXPECT_EQ(row["obtained"], true) << row.dump();
+      EXPECT_TRUE(row["error"].is_null()) << row.dump();
+    }
 
   // A failing row: exit 1 and what was expected, from where.
   const std::string cat = (dir.path / "tight.json").string();
