@@ -1,7 +1,7 @@
 // `masonry validate`: the catalogue of benchmarks on both methods, or on an outside solver, one
 // table, an exit code for CI.
 //   masonry validate [--quick] [--only NAME...] [--json FILE] [--markdown FILE] [--catalogue FILE]
-//                    [--solver 'COMMAND' [--solver-name NAME] [--solver-as prd|dem] [--solver-timeout S]]
+//                    [--solver 'COMMAND' [--solver-name NAME] [--solver-as prd|dem] [--solver-timeout S] [--solver-keep DIR]]
 // Exit code 0 when every row passes, 1 when one fails or errors, 2 for bad input (main()).
 #include <cctype>
 #include <cstdio>
@@ -24,21 +24,40 @@ struct Opts {
   bool quick = false, quiet = false, list = false;
   std::vector<std::string> only;
   std::string json, markdown, catalogue;
-  std::string solver, solver_name = "solver", solver_as = "prd";
+  std::string solver, solver_name = "solver", solver_as = "prd", solver_keep;
   double solver_timeout = 600;
 };
 
-// The outside solver's working directory: a fresh one under the system's temporary directory.
-// The paths replace {case} and {out} in a shell command as they are, so they must need no quoting.
-std::string solver_workdir() {
+// The outside solver's working directory: the user's --solver-keep DIR (made if missing), else a
+// fresh one under the system's temporary directory. The paths replace {case} and {out} in a
+// shell command as they are, so they must need no quoting.
+std::string solver_workdir(const std::string& keep) {
   namespace fs = std::filesystem;
-  std::string pattern = (fs::temp_directory_path() / "masonry-solver-XXXXXX").string();
-  for (char ch : pattern)
+  std::string dir = keep.empty() ? (fs::temp_directory_path() / "masonry-solver-XXXXXX").string() : keep;
+  const std::string what = keep.empty() ? "--solver: the temporary directory " : "--solver-keep: ";
+  for (char ch : dir)
     if (!std::isalnum(static_cast<unsigned char>(ch)) && std::string("/._-+").find(ch) == std::string::npos)
-      throw CaseError("--solver: the temporary directory " + pattern + " has characters a shell command would need quoted (set TMPDIR)");
-  if (!mkdtemp(pattern.data())) throw CaseError("--solver: cannot make a working directory under " + fs::temp_directory_path().string());
-  return pattern;
+      throw CaseError(what + dir + " has characters a shell command would need quoted" + (keep.empty() ? " (set TMPDIR)" : ""));
+  if (!keep.empty()) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir)) throw CaseError("--solver-keep: cannot make the directory " + dir + (ec ? ": " + ec.message() : ""));
+    return dir;
+  }
+  if (!mkdtemp(dir.data())) throw CaseError("--solver: cannot make a working directory under " + fs::temp_directory_path().string());
+  return dir;
 }
+
+// The temporary working directory goes when the command ends, however it ends (every row passed,
+// one failed, or a refusal thrown mid-way): a failing solver left one under /tmp per run. The
+// user's --solver-keep DIR is never removed.
+struct RemovedAtExit {
+  std::string dir;
+  ~RemovedAtExit() {
+    std::error_code ec;
+    if (!dir.empty()) std::filesystem::remove_all(dir, ec);
+  }
+};
 
 std::string command_line(const Opts& o) {
   std::string s = "masonry validate";
@@ -46,6 +65,7 @@ std::string command_line(const Opts& o) {
   for (const std::string& n : o.only) s += " --only " + n;
   if (!o.catalogue.empty()) s += " --catalogue " + o.catalogue;
   if (!o.solver.empty()) s += " --solver '" + o.solver + "' --solver-name " + o.solver_name + " --solver-as " + o.solver_as;
+  if (!o.solver_keep.empty()) s += " --solver-keep " + o.solver_keep;
   return s;
 }
 
@@ -72,6 +92,10 @@ void add_validate_commands(CLI::App& app, Commands& out) {
   sub->add_option("--solver-timeout", o->solver_timeout, "Seconds one run of the solver may take (default 600); past it the run is an error")
       ->check(CLI::PositiveNumber)
       ->needs("--solver");
+  sub->add_option("--solver-keep", o->solver_keep,
+                  "Write the solver's runs (each benchmark's case.json, out/ and solver.log) under this directory and keep them; without it "
+                  "they go to a temporary directory removed at the end")
+      ->needs("--solver");
   out.push_back({sub, [o]() {
                    const Catalogue cat = o->catalogue.empty() ? builtin_catalogue() : load_catalogue(o->catalogue);
                    if (o->list) {
@@ -80,13 +104,16 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                    }
                    const std::vector<const Benchmark*> todo = chosen_benchmarks(cat, o->quick, o->only);
                    std::optional<OutsideSolver> solver;
+                   RemovedAtExit temporary;
                    if (!o->solver.empty()) {
                      solver.emplace();
                      solver->command = o->solver;
                      solver->name = o->solver_name;
                      solver->as = *parse_method(o->solver_as);
                      solver->timeout_s = o->solver_timeout;
-                     solver->workdir = solver_workdir();
+                     solver->workdir = solver_workdir(o->solver_keep);
+                     solver->kept = !o->solver_keep.empty();
+                     if (!solver->kept) temporary.dir = solver->workdir;
                    }
                    std::vector<ValidationRow> rows;
                    RunCache cache;
@@ -114,9 +141,11 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                    if (!o->markdown.empty()) write_file_atomic(o->markdown, validation_markdown(cat, rows, command_line(*o)));
                    bool any_failed = false;
                    for (const ValidationRow& r : rows) any_failed = any_failed || failed(r);
-                   // The solver's files are kept where they explain a failure, removed otherwise.
-                   if (solver && any_failed) std::cout << "\nThe solver's runs (case.json, out/, solver.log): " << solver->workdir << "\n";
-                   if (solver && !any_failed) std::filesystem::remove_all(solver->workdir);
+                   // Where the runs are, where they are kept; else, after a failure, how to keep them.
+                   if (solver && solver->kept) std::cout << "\nThe solver's runs (case.json, out/, solver.log): " << solver->workdir << "\n";
+                   if (solver && !solver->kept && any_failed)
+                     std::cout << "\nThe solver's runs were in a temporary directory, now removed: --solver-keep DIR keeps them (case.json, out/, "
+                                  "solver.log)\n";
                    return any_failed ? kExitFailed : kExitDone;
                  }});
 }

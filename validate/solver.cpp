@@ -106,14 +106,17 @@ RunResult run_outside(const OutsideSolver& s, const Case& c, const std::string& 
   const Exit e = run_shell(command, log, s.timeout_s);
   const std::string said = last_line(log);
   const std::string tail = said.empty() ? "" : " (last line of its output: " + said + ")";
+  // Where to look: the run's folder where the user keeps the runs; else how to keep them (the
+  // temporary folder is gone when the command ends).
+  const std::string files = s.kept ? "; its files: " + dir.string() : "; --solver-keep DIR keeps its case.json, out/ and solver.log";
   if (e.timed_out) {
     std::ostringstream m;
-    m << "the solver ran past " << s.timeout_s << " s (--solver-timeout) and was stopped; its files: " << dir.string();
+    m << "the solver ran past " << s.timeout_s << " s (--solver-timeout) and was stopped" << files;
     throw std::runtime_error(m.str());
   }
-  if (e.status != 0) throw std::runtime_error("the solver exited with status " + std::to_string(e.status) + tail + "; its files: " + dir.string());
+  if (e.status != 0) throw std::runtime_error("the solver exited with status " + std::to_string(e.status) + tail + files);
   const fs::path results = out / "results.json";
-  if (!fs::exists(results)) throw std::runtime_error("the solver wrote no {out}/results.json (" + results.string() + ")" + tail);
+  if (!fs::exists(results)) throw std::runtime_error("the solver wrote no {out}/results.json" + tail + files);
   RunResult r = load_results(results.string(), c);
   // A results file of another case (a copy left from an earlier run, a hard-coded name) would
   // be judged as this case's answer.

@@ -20,6 +20,7 @@ struct OutsideSolver {
   Method as = Method::prd;      // judged by this method's expected value and tolerance
   double timeout_s = 600;       // per run; a run past it is killed (its process group) and is an error
   std::string workdir;          // an existing directory: each run's case.json, out/ and solver.log go under it
+  bool kept = false;            // workdir is the user's (--solver-keep) and stays: a failure names its run's files
 };
 
 // Runs the solver on case `c` in a directory of its own under workdir (named after `label`):

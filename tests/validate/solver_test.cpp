@@ -5,6 +5,7 @@
 // results file cannot give are not applicable; a threshold runs the solver at every bisection point.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "common.hpp"
@@ -24,10 +25,13 @@ struct Outcome {
   std::string out, err;
 };
 
+// The command runs with its temporary directory in the scratch one (tmp/), so a test sees what it
+// leaves there and leaves nothing in the system's.
 Outcome validate(const Scratch& dir, const std::string& args) {
   const std::string out = (dir.path / "out").string(), err = (dir.path / "err").string();
+  std::filesystem::create_directories(dir.path / "tmp");
   Outcome o;
-  o.rc = test::run(kExe + " validate --quiet " + args + " >" + out + " 2>" + err);
+  o.rc = test::run("TMPDIR=" + (dir.path / "tmp").string() + " " + kExe + " validate --quiet " + args + " >" + out + " 2>" + err);
   o.out = test::read(out);
   o.err = test::read(err);
   return o;
@@ -60,8 +64,34 @@ TEST(ValidateSolver, TheExampleSolverPassesAndACopyTenPercentOffFails) {
   EXPECT_EQ(wrong.rc, 1) << wrong.out << wrong.err;
   EXPECT_NE(wrong.out.find("FAIL block-topples (wrong-py): expected capacity 0.463648 +- 0.001 rad"), std::string::npos) << wrong.out;
   EXPECT_NE(wrong.out.find("obtained 0.5093"), std::string::npos) << wrong.out;  // 1.1 x its 0.463
-  // Its files are kept for the failure, and named.
-  EXPECT_NE(wrong.out.find("The solver's runs (case.json, out/, solver.log): "), std::string::npos) << wrong.out;
+  // Its temporary directory is gone (a failing solver left one per try in /tmp), and the output
+  // says how to keep the runs.
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path / "tmp")) << wrong.out;
+  EXPECT_NE(wrong.out.find("--solver-keep DIR keeps them"), std::string::npos) << wrong.out;
+}
+
+// --solver-keep DIR: every run's case.json, out/ and solver.log stay under DIR, named by the
+// benchmark, and the output names DIR; a failure names its run's folder. A refusal mid-way
+// (exit 2) removes the temporary directory too.
+TEST(ValidateSolver, TheRunsAreKeptOnlyWhereAsked) {
+  Scratch dir("validate-solver-keep");
+  const std::string keep = (dir.path / "runs").string();
+  const Outcome wrong = validate(dir, "--solver 'echo it broke >&2; exit 1' --only block-topples --solver-keep " + keep);
+  EXPECT_EQ(wrong.rc, 1) << wrong.out << wrong.err;
+  const std::filesystem::path run = dir.path / "runs" / "block-topples-1";
+  EXPECT_TRUE(std::filesystem::exists(run / "case.json")) << wrong.out;
+  EXPECT_TRUE(std::filesystem::is_directory(run / "out")) << wrong.out;
+  EXPECT_EQ(test::read(run / "solver.log"), "it broke\n");
+  EXPECT_NE(wrong.out.find("its files: " + run.string()), std::string::npos) << wrong.out;
+  EXPECT_NE(wrong.out.find("The solver's runs (case.json, out/, solver.log): " + keep), std::string::npos) << wrong.out;
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path / "tmp"));
+
+  const std::string cat = (dir.path / "cat.json").string();
+  test::write(cat, R"({"format": "masonry-catalogue/1", "benchmarks": [{"name": "arch", "title": "t", "source": "s",
+    "case": {"generator": "circular-arch", "parameters": {"height": 2}}, "quantity": "stands", "expected": true, "methods": {"prd": {}}}]})");
+  const Outcome bad = validate(dir, "--solver true --catalogue " + cat);
+  EXPECT_EQ(bad.rc, 2) << bad.out << bad.err;
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path / "tmp"));
 }
 
 TEST(ValidateSolver, ASolverThatFailsGivesAnErrorRowWithTheReason) {
