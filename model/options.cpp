@@ -130,6 +130,7 @@ const Option<DemOptions> kDemRows[] = {
     {.name = "damping",
      .member = &DemOptions::damping,
      .range = {0, 1, false, true},
+     .note = "0 only with hold_damping kinetic: a hold with local damping settles by this alone",
      .help = "Local non-viscous damping coefficient alpha",
      .flag = "--damping",
      .on_compare = true},

@@ -86,19 +86,53 @@ TEST(DemEnergy, UnstableTimeStepIsRefused) {
   EXPECT_THROW(dem_run(c, DemSettings::from_case(c)), std::runtime_error);
 }
 
-// A capacity run without damping: a block settling on its slab with friction 35 degrees gains
-// kinetic energy beyond the work put in even at a tenth of the time-step bound (a small gain per
-// contact event that nothing takes out again), and the guard stops the run. Its message says
-// that damping 0 is the suspect, not the time step.
-TEST(DemEnergy, AnUndampedRunThatGainsEnergySaysDampingNotTimeStep) {
+// A capacity run without damping and with local holds: nothing takes energy out of a hold, so
+// none can settle (dem/README.md, "Refusals and the blow-up guard"); it ran until the blow-up
+// guard stopped it, blaming the time step even at a tenth of its bound. It is refused before
+// the first cycle, in one line naming the field and what to set instead.
+TEST(DemEnergy, AnUndampedRunWithLocalHoldsIsRefused) {
   Case c = test::tilt_case(0.2, 0.4, 35);
   c.dem.damping = 0;
   c.dem.timestep_factor = 0.1;
+  try {
+    dem_run(c, DemSettings::from_case(c));
+    FAIL() << "ran undamped with local holds";
+  } catch (const CaseError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_NE(msg.find("dem: field 'damping' = 0 with dem.hold_damping local"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("dem.hold_damping kinetic"), std::string::npos) << msg;
+  }
+}
+
+// Kinetic holds stop the blocks at each peak of the kinetic energy, so they settle without
+// damping: the block topples at atan(b/h), as with damping (tilt_test.cpp's bound: at most a
+// degree below, the bracket and the joints' elastic lean).
+TEST(DemEnergy, AnUndampedRunWithKineticHoldsTopplesAtAtanBOverH) {
+  const double b = 0.2, h = 0.4;
+  Case c = test::tilt_case(b, h, 45);
+  c.dem.damping = 0;
+  c.dem.hold_damping = HoldDamping::kinetic;
+  const RunResult r = test::tilt_run(c);
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
+  const double topple = std::atan(b / h);
+  EXPECT_LE(r.capacity, topple);
+  EXPECT_GT(r.capacity, topple - M_PI / 180);
+}
+
+// Lightly damped (1e-4; 0.01 settles), the gain of each contact's opening and closing between
+// cycles outgrows what the damping takes out at the full time step, and the guard stops the run.
+// The step is within its stability bound, so the message names the damping, not the step.
+TEST(DemEnergy, ALightlyDampedRunThatGainsEnergySaysDampingNotTimeStep) {
+  Case c = test::tilt_case(0.2, 0.4, 35);
+  c.dem.damping = 1e-4;
   c.motion.max_steps = 3;
   const RunResult r = dem_run(c, DemSettings::from_case(c));
   ASSERT_EQ(r.status, RunStatus::error) << r.message;
-  EXPECT_NE(r.message.find("with dem.damping 0"), std::string::npos) << r.message;
-  EXPECT_EQ(r.message.find("time step too close"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("blew up"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("dem.damping 0.0001 is too light"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("the time step is within its stability bound"), std::string::npos) << r.message;
+  EXPECT_EQ(r.message.find("times the bound"), std::string::npos) << r.message;
 }
 
 }  // namespace
