@@ -9,6 +9,7 @@
 
 #include "dem/model_impl.hpp"
 #include "model/interfaces.hpp"
+#include "model/options.hpp"
 
 namespace masonry {
 
@@ -227,13 +228,20 @@ void DemModel::Impl::set_time_step() {
 // larger, since only some joints carry it, and so are the blocks above. Where even that bound is
 // 5% of the block's size, the DEM would compute a block sinking into its neighbours, not a
 // masonry structure: a block 1e5 m deep on a 1 m deep ground carries its weight on 1 m of depth
-// and sank 7.8 m into it at the tilting block's kn. Refused with the numbers instead.
+// and sank 7.8 m into it at the tilting block's kn. Refused with the numbers instead, naming the
+// field that makes the joints too soft: the depth where the joints at the block's own depth
+// would hold it (its neighbours are shallower: a block's weight and joints both grow with its
+// depth, so at matched depths the overlap does not depend on it), else the stiffness, by the
+// option that set it (the tilting block at --stiffness-reduction 1e6 was told to match depths
+// that matched, and not which of its settings made kn 100 Pa/m).
 void DemModel::Impl::check_joint_stiffness() const {
-  std::vector<double> area(nb, 0.0);
+  std::vector<double> area(nb, 0.0), own(nb, 0.0);  // joints at the smaller depth; at the block's own
   for (const Interface& J : detect_interfaces(c, c.prd.contact_tolerance)) {
     const double a = J.length() * std::min(depth[J.i], depth[J.j]);
     area[J.i] += a;
     area[J.j] += a;
+    own[J.i] += J.length() * depth[J.i];
+    own[J.j] += J.length() * depth[J.j];
   }
   for (int b = 0; b < nb; ++b) {
     if (support[b] || !(area[b] > 0)) continue;
@@ -241,10 +249,20 @@ void DemModel::Impl::check_joint_stiffness() const {
     const double size = std::sqrt(std::abs(signed_area(c.blocks[b].vertices)));
     if (overlap <= kMaxOverlap * size) continue;
     std::ostringstream m;
-    m << c.source << ": block '" << printable(c.blocks[b].id) << "': field 'depth': its joints would overlap by at least " << overlap
-      << " m under its own weight (" << wref[b] << " N over kn " << kn << " Pa/m x " << area[b]
-      << " m^2 of joints, each at the smaller depth of its two blocks), over " << kMaxOverlap * 100
-      << "% of its size: far too soft a joint for a rigid-block model; match the depths or raise dem.young_modulus or dem.kn";
+    m << c.source << ": block '" << printable(c.blocks[b].id) << "': ";
+    const bool depths = wref[b] / (kn * own[b]) <= kMaxOverlap * size;
+    if (depths)
+      m << "field 'depth'";
+    else if (s.stiffness_reduction != 1)
+      m << "field '" << option_key(&DemOptions::stiffness_reduction) << "' = " << s.stiffness_reduction;
+    else
+      m << "field '" << (s.kn ? option_key(&DemOptions::kn) : option_key(&DemOptions::young_modulus)) << "' = " << (s.kn ? *s.kn : s.young_modulus);
+    m << ": its joints would overlap by at least " << overlap << " m under its own weight (" << wref[b] << " N over kn " << kn << " Pa/m x "
+      << area[b] << " m^2 of joints, each at the smaller depth of its two blocks), over " << kMaxOverlap * 100
+      << "% of its size: far too soft a joint for a rigid-block model; "
+      << (depths ? "match the depths, or stiffen the joints: " : "stiffen the joints: ") << "kn is "
+      << (s.kn ? option_key(&DemOptions::kn) : option_key(&DemOptions::young_modulus) + " / h_block") << " divided by "
+      << option_key(&DemOptions::stiffness_reduction) << " (" << s.stiffness_reduction << ")";
     throw CaseError(m.str());
   }
 }

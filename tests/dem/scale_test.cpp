@@ -106,4 +106,33 @@ TEST(DemScale, JointsTooSoftForTheWeightAreRefused) {
   EXPECT_NO_THROW(DemModel(c, DemSettings::from_case(c)));
 }
 
+// Joints too soft at matched depths are the stiffness's fault, not the depth's: the tilting block
+// at --stiffness-reduction 1e6 was told "field 'depth' ... match the depths" (they matched) and
+// not which of its settings made kn 100 Pa/m. The refusal names the option that set the
+// stiffness. Expected: the case file's kn 1e8 Pa/m over 1e6, the block's weight
+// (0.2 x 0.4 m x 2000 kg/m^3 x 9.81) over kn times its 0.2 m x 1 m base.
+TEST(DemScale, JointsTooSoftAtMatchedDepthsNameTheStiffnessOption) {
+  const Case file = load_case(std::string(MASONRY_SOURCE_DIR) + "/cases/tilting-block.json");
+  const Case c = with_option(file, "dem.stiffness_reduction", 1e6);
+  ASSERT_EQ(c.dem.kn, 1e8);
+  try {
+    DemModel m(c, DemSettings::from_case(c));
+    FAIL() << "accepted";
+  } catch (const CaseError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("block 'block': field 'dem.stiffness_reduction' = 1e+06: its joints would overlap by at least 78.48 m"), std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find("kn 100 Pa/m"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("'depth'"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  // Without a reduction, the case's own dem.kn is named.
+  try {
+    DemModel m(with_option(file, "dem.kn", 100.0), DemSettings::from_case(with_option(file, "dem.kn", 100.0)));
+    FAIL() << "accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("block 'block': field 'dem.kn' = 100:"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
