@@ -23,16 +23,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // CLI11 prints the message (or the help, exit 0); a usage error is a refusal like any other
-    // bad input (command.hpp), not CLI11's own codes (105-109). A subcommand or option that does
-    // not exist is named with the nearest one that does.
-    if (e.get_exit_code() != 0) {
-      if (const auto hint = masonry::unknown_name_hint(app, std::vector<std::string>(argv + 1, argv + argc))) {
-        std::cerr << masonry::printable(*hint, 2000) << "\n";
-        return masonry::kExitRefused;
-      }
-    }
-    return app.exit(e) == 0 ? masonry::kExitDone : masonry::kExitRefused;
+    // CLI11 prints the help (exit 0); a usage error is a refusal like any other bad input
+    // (command.hpp), not CLI11's own codes (105-109), said in one line as every refusal is. A
+    // subcommand or option that does not exist is named with the nearest one that does.
+    if (e.get_exit_code() == 0) return app.exit(e) == 0 ? masonry::kExitDone : masonry::kExitRefused;
+    const auto hint = masonry::unknown_name_hint(app, std::vector<std::string>(argv + 1, argv + argc));
+    std::cerr << masonry::printable(hint ? *hint : masonry::usage_error_line(app, e.what()), 2000) << "\n";
+    return masonry::kExitRefused;
   }
   for (const masonry::Command& c : commands) {
     if (!c.app->parsed()) continue;

@@ -29,6 +29,14 @@ std::string full_name(const CLI::App* app) {
 
 }  // namespace
 
+std::string usage_error_line(const CLI::App& app, const std::string& what) {
+  const CLI::App* at = &app;
+  for (std::vector<CLI::App*> subs = at->get_subcommands(); !subs.empty(); subs = at->get_subcommands()) at = subs.back();
+  std::string line = what;
+  std::replace(line.begin(), line.end(), '\n', ' ');
+  return full_name(at) + ": " + line + " (" + full_name(at) + " --help lists the options)";
+}
+
 std::optional<std::string> unknown_name_hint(CLI::App& app, const std::vector<std::string>& args) {
   // Walk the words as CLI11 does: each one that names a subcommand of the current app enters it.
   CLI::App* at = &app;

@@ -17,4 +17,10 @@ namespace masonry {
 // first word).
 std::optional<std::string> unknown_name_hint(CLI::App& app, const std::vector<std::string>& args);
 
+// Any other usage error CLI11 refuses (a value that is not a number, a required option missing,
+// a value out of its range) as one line in the harness's form, "masonry dem: WHAT (masonry dem
+// --help lists the options)", naming the subcommand the parse had entered, where CLI11 prints
+// its message and a second line of its own.
+std::string usage_error_line(const CLI::App& app, const std::string& what);
+
 }  // namespace masonry

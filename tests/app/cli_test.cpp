@@ -58,6 +58,33 @@ TEST(CommandLine, AMistypedNameIsRefusedWithTheNearestOne) {
   EXPECT_EQ(run("dem --help", dir).rc, 0);
 }
 
+// Every other usage error CLI11 refuses (a whole number given 1.5, a required option missing, a
+// value out of its range) is one line in the harness's form, naming the subcommand, where CLI11
+// printed its message and "Run with --help or --help-all for more information." (README,
+// "Commands": refused with one line on stderr).
+TEST(CommandLine, AUsageErrorIsOneLineNamingTheCommand) {
+  Scratch dir("cli-usage");
+  const std::string out = (dir.path / "o").string();
+  struct Usage {
+    std::string args, start, needle;
+  };
+  const std::vector<Usage> usages = {
+      {"dem " + kTilt + " --out " + out + " --max-steps 1.5", "masonry dem: ", "--max-steps = 1.5"},
+      {"prd " + kTilt + " --out " + out + " --max-steps 1.5", "masonry prd: ", "--max-steps = 1.5"},
+      {"dem " + kTilt, "masonry dem: ", "--out is required"},
+      {"prd " + kTilt + " --out " + out + " --friction-angle 100", "masonry prd: ", "--friction-angle"},
+      {"cases wall --bond flemish --out -", "masonry cases wall: ", "--bond: must be one of header, running, stack"},
+  };
+  for (const Usage& u : usages) {
+    const Ran r = run(u.args, dir);
+    EXPECT_EQ(r.rc, 2) << u.args;
+    EXPECT_EQ(r.err.rfind(u.start, 0), 0u) << u.args << " | " << r.err;
+    EXPECT_NE(r.err.find(u.needle), std::string::npos) << u.args << " | " << r.err;
+    EXPECT_NE(r.err.find("--help lists the options)"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  }
+}
+
 // A flag that takes a word names the words it takes, not CLI11's internal map of them.
 TEST(CommandLine, AWordOutsideItsListIsRefusedNamingTheWords) {
   Scratch dir("cli-words");
