@@ -30,7 +30,22 @@ struct Opts {
   double spread_limit = 0.02, prd_limit = 0.03;
   std::vector<std::string> only;  // a study: the variants to run; the others are read back
   bool read_back = false;         // a study: read every run back, run none
+  // The study's own flags as given (a count each), for the note that they act only with it.
+  std::vector<const CLI::Option*> study_flags, convergence_flags;
 };
+
+// The study's flags given to a run they do not act on, one line each, in idle_options' words:
+// `dem CASE --jobs 3` ran one run and said nothing of the 3.
+std::vector<std::string> idle_study_flags(const Opts& o) {
+  std::vector<std::string> out;
+  if (!o.convergence && !o.stiffness_study)
+    for (const CLI::Option* f : o.study_flags)
+      if (f->count() > 0) out.push_back(f->get_name() + " has no effect without a study (--convergence or --stiffness-study): this is one run");
+  if (!o.convergence)
+    for (const CLI::Option* f : o.convergence_flags)
+      if (f->count() > 0) out.push_back(f->get_name() + " has no effect without --convergence: only the convergence study has limits");
+  return out;
+}
 
 // A study's runs: every variant, or with --only the named ones (none with
 // --read-back), the others read back from DIR/<variant>/results.json of an earlier study (a
@@ -137,18 +152,22 @@ void add_dem_commands(CLI::App& app, Commands& out) {
                 "DIR/stiffness.{json,md}, each run in DIR/<variant>/, each run's mechanism against PRD's; a measurement with no "
                 "limits: exit code 1 only when a run does not finish")
       ->excludes("--convergence");
-  sub->add_option("--jobs", o->jobs, "A study: runs at a time, one thread each (default 2)")->check(CLI::PositiveNumber);
-  sub->add_option("--spread-limit", o->spread_limit, "Convergence study: largest (max - min) / default capacity (default 0.02)");
-  sub->add_option("--prd-limit", o->prd_limit, "Convergence study: largest |default - PRD| / PRD capacity (default 0.03)");
-  sub->add_option("--only", o->only,
-                  "A study: run only these variants again and read the others back from DIR/<variant>/results.json "
-                  "(of a study run with the same binary and settings: the results do not say which code made them)");
-  sub->add_flag("--read-back", o->read_back, "A study: run no variant, read them all back from DIR/<variant>/results.json and write the study again");
+  o->study_flags.push_back(sub->add_option("--jobs", o->jobs, "A study: runs at a time, one thread each (default 2)")->check(CLI::PositiveNumber));
+  o->convergence_flags.push_back(
+      sub->add_option("--spread-limit", o->spread_limit, "Convergence study: largest (max - min) / default capacity (default 0.02)"));
+  o->convergence_flags.push_back(
+      sub->add_option("--prd-limit", o->prd_limit, "Convergence study: largest |default - PRD| / PRD capacity (default 0.03)"));
+  o->study_flags.push_back(sub->add_option("--only", o->only,
+                                           "A study: run only these variants again and read the others back from DIR/<variant>/results.json "
+                                           "(of a study run with the same binary and settings: the results do not say which code made them)"));
+  o->study_flags.push_back(sub->add_flag("--read-back", o->read_back,
+                                         "A study: run no variant, read them all back from DIR/<variant>/results.json and write the study again"));
   out.push_back({sub, [o]() {
                    const Case c = o->settings.apply(load_case(o->case_path));
                    const DemSettings s = DemSettings::from_case(c);
                    if (!o->quiet) warn_dem_cost(c, s);
                    for (const std::string& line : idle_options(c.dem)) std::cerr << "dem: note: " << line << "\n";
+                   for (const std::string& line : idle_study_flags(*o)) std::cerr << "dem: note: " << line << "\n";
                    if (o->convergence) return run_study(c, s, Study::convergence, *o);
                    if (o->stiffness_study) return run_study(c, s, Study::stiffness, *o);
                    RunProgress progress("dem", s.step * s.max_steps, 0.0, dem_step_detail, path_unit(c));

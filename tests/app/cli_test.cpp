@@ -177,6 +177,20 @@ TEST(CommandLine, AnOptionThatActsOnlyWithAnotherSaysSo) {
   EXPECT_NE(ramp.err.find("dem: note: dem.ramp_fraction (--ramp-fraction) has no effect without dem.move_time"), std::string::npos) << ramp.err;
 }
 
+// The DEM's study flags on a plain run (one run, no study) were accepted silently: `dem CASE
+// --jobs 3` ran one run on one thread. Each is named as an idle option is (README, the dem
+// rows: --jobs, --only and --read-back belong to the studies, the limits to --convergence).
+TEST(CommandLine, ADemStudyFlagOnAPlainRunSaysSo) {
+  Scratch dir("cli-idle-study");
+  const std::string out = (dir.path / "o").string();
+  const Ran jobs = run("dem " + kTilt + " --out " + out + " --quiet --max-steps 1 --jobs 3 --spread-limit 0.1", dir);
+  EXPECT_EQ(jobs.rc, 0) << jobs.err;
+  EXPECT_NE(jobs.err.find("dem: note: --jobs has no effect without a study (--convergence or --stiffness-study)"), std::string::npos) << jobs.err;
+  EXPECT_NE(jobs.err.find("dem: note: --spread-limit has no effect without --convergence"), std::string::npos) << jobs.err;
+  const Ran plain = run("dem " + kTilt + " --out " + out + " --quiet --max-steps 1", dir);
+  EXPECT_EQ(plain.err.find("note:"), std::string::npos) << plain.err;
+}
+
 // A case whose supports do not move is refused by the capacity commands (exit 2, one line),
 // where `masonry prd` ran 1000 steps to "max_steps, capacity 1 m" with exit code 0.
 TEST(CommandLine, SupportsThatDoNotMoveAreRefused) {
