@@ -75,7 +75,7 @@ const Option<PrdOptions> kPrdRows[] = {
      .member = &PrdOptions::event_tolerance,
      .unit = "m",
      .range = {0, kMaxLength},
-     .note = "0: 1e-4 of the scene size",
+     .note = "0: 1e-4 of the scene size (where d is an angle, the turn that moves the scene's points by that)",
      .scene = {kFinestFraction, 0.1},
      .help = "With adaptive: how closely events are located",
      .flag = "--event-tolerance"},
@@ -84,7 +84,7 @@ const Option<PrdOptions> kPrdRows[] = {
      .unit = "m",
      .range = {0, kMaxLength},
      .note = "0: the smaller of 16 x motion.step and 0.4 sqrt(event_tolerance x scene size), 1/250 of the scene at the default "
-             "tolerance",
+             "tolerance (where d is an angle, as turns that move the scene's points by those lengths)",
      .scene = {kFinestFraction, 1},
      .help = "With adaptive: the longest step",
      .flag = "--max-step"},

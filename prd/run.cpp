@@ -106,11 +106,15 @@ struct Walk {
     // changes and no event is bracketed more finely than one step.
     h_ref = s.step;
     m.kept_basis_allowed = !s.adaptive;
-    tol_ev = !s.adaptive ? h_ref : s.event_tolerance > 0 ? s.event_tolerance : 1e-4 * scene_size(c);
+    // The defaults are lengths of the scene; where d is an angle (every moving support only
+    // turns) they are the turn that moves the scene's points by that length (its lever, as
+    // support_travel_per_d counts it), so that a tilt's events do not depend on the scene's size.
+    const double L = scene_size(c), per_d = path_unit(c) == "rad" ? support_travel_per_d(c) : 1.0;
+    tol_ev = !s.adaptive ? h_ref : s.event_tolerance > 0 ? s.event_tolerance : 1e-4 * L / per_d;
     // The longest move. A move's path error (second order, see Path) grows as the square of
     // its length against the scene's, so the default keeps it within the event tolerance:
     // 0.4 sqrt(tolerance x scene size), 1/250 of the scene at the default tolerance.
-    h_max = !s.adaptive ? h_ref : std::max(s.max_step > 0 ? s.max_step : std::min(16 * h_ref, 0.4 * std::sqrt(tol_ev * scene_size(c))), tol_ev);
+    h_max = !s.adaptive ? h_ref : std::max(s.max_step > 0 ? s.max_step : std::min(16 * h_ref, 0.4 * std::sqrt(tol_ev * per_d * L) / per_d), tol_ev);
     if (s.start) {
       start_from(m, *s.start);
       d0 = s.start->d;

@@ -48,7 +48,7 @@ done
 # settlement comparison's difference is the elastic model's. Not a paper case: its limits are
 # reported, not required. Its PRD run is compare-cathedral-settlement's. The DEM's holds are capped
 # at 150 s: at this stiffness the structure near its capacity moves so slowly that at the 30 s cap
-# the run stops undecided (reports/dem-stiffness/). About 30-33 CPU minutes (1798-1953 s, 2026-11-25).
+# the run stops undecided (reports/dem-stiffness/). About 30-40 CPU minutes (1798-1953 s on 2026-11-25, 2373 s on 2026-11-27).
 out=reports/compare-cathedral-settlement-stiff-joints
 if [ $render = 0 ]; then
   "$masonry" dem cases/cathedral-settlement.json --friction 35 --stiffness-reduction 0.03333333333333333 --hold-time 150 --out "$out/dem" --quiet

@@ -107,5 +107,30 @@ TEST(PrdScale, GeometryScaledScalesTheCapacity) {
   }
 }
 
+// Where every moving support only turns, d is an angle: the tilting block scaled by s topples
+// at the same tilt, with event-driven steps too. The defaults of the event tolerance and the
+// longest step are lengths of the scene (1e-4 of it, 0.4 sqrt(tolerance x size)), taken as the
+// turn that moves the scene's points by them; read as angles they grew with the scene, and the
+// block scaled by 100 toppled at 0.4524 rad, 2.4% early, in one step of 16 degrees (a user's
+// trial, 2026-11-27).
+TEST(PrdScale, AnAdaptiveTiltIsTheSameAtAnyScale) {
+  Case base = standard_file("tilting-block");
+  base.prd.adaptive = true;
+  const RunResult ref = prd_run(base, PrdSettings::from_case(base));
+  ASSERT_EQ(ref.status, RunStatus::collapse);
+  EXPECT_NEAR(ref.capacity, std::atan(0.5), 1e-3 * std::atan(0.5));
+  for (double s : {1e-2, 1e2}) {
+    Case c = base;
+    for (Block& b : c.blocks)
+      for (Vec2& v : b.vertices) v *= s;
+    for (SupportMotion& m : c.motion.supports) m.about *= s;
+    c.prd.contact_tolerance *= s;
+    const RunResult r = prd_run(c, PrdSettings::from_case(c));
+    EXPECT_EQ(r.status, ref.status) << s;
+    EXPECT_EQ(r.steps.size(), ref.steps.size()) << s;
+    EXPECT_NEAR(r.capacity, ref.capacity, 1e-9) << s;
+  }
+}
+
 }  // namespace
 }  // namespace masonry
