@@ -50,12 +50,10 @@ struct InteriorValues {
 
 namespace {
 
-// The tests a solution must pass (interior.hpp), in the LP's units (the step, the force unit):
-// the kept basis's primal tolerance (kept_basis.cpp, after GLPK's own), and the dual one relative
-// to the forces that meet at a block, since a wall hanging from its still half carries corner
-// forces of 1e5 of its heaviest brick, whose sum round-off alone leaves at 1e-11 of them.
-constexpr double kPrimalEps = 0.5e-7;
-constexpr double kDualEps = 1e-7;
+// The tests a solution must pass (interior.hpp): the kept basis's (kept_basis.hpp), and the
+// equilibrium also within kDualRel of the forces that meet at a block, since a wall hanging from
+// its still half carries corner forces of 1e5 of its heaviest brick, whose sum round-off alone
+// leaves at 1e-11 of them.
 constexpr double kDualRel = 1e-10;
 // The equality rows' dual regularisation: their weight in the normal equations.
 constexpr double kDelta = 1e-8;

@@ -41,8 +41,7 @@ namespace {
 // phase 1 where a basic variable is below its bound by more than 0.97 tol_bnd (tol_bnd 1e-7);
 // this one takes half of that. Its dual test is tol_dj (1e-7) plus 1e-10 times the cost. The
 // LP's units are a step and the force unit, so its values are of order one.
-constexpr double kPrimalEps = 0.5e-7;
-double dual_eps(double cost) { return 1e-7 + 1e-10 * std::abs(cost); }
+double dual_eps(double cost) { return kDualEps + 1e-10 * std::abs(cost); }
 // Factors whose ratio of smallest to largest diagonal entry of U (klu_rcond) is below this are
 // not used: GLPK refuses a basis whose condition estimate passes 1 / DBL_EPSILON.
 constexpr double kLeastRcond = 1e-12;

@@ -20,6 +20,13 @@ namespace masonry::prd_detail {
 
 struct Model;
 
+// The tests a vertex or a solution must pass to be taken without GLPK (kept_basis.cpp, the
+// interior point's interior.cpp), in the LP's units (the step, the force unit): every basic row
+// within kPrimalEps of its bound, where GLPK, which shifts bounds to zero first, starts a phase 1
+// beyond 0.97 of its tol_bnd (1e-7); dual signs and reduced costs within kDualEps, GLPK's tol_dj.
+constexpr double kPrimalEps = 0.5e-7;
+constexpr double kDualEps = 1e-7;
+
 struct KeptBasisValues;  // the factorisation and the values of the last solve by the kept basis
 struct KeptBasis {
   std::vector<int> rows;  // the nonbasic rows (1-based) of GLPK's last basis; empty: none kept
