@@ -51,6 +51,9 @@ bool solve_interior(Model& m);
 // still half: the same forces hold it step after step): true, the values in m.interior, where it
 // passes the tests above.
 bool interior_still_optimal(Model& m);
+// The tests a solution must pass (above) of column values x (1-based) and row duals y (one per
+// LP row), against the LP update_lp wrote: for the tests of the tests.
+bool interior_optimal(const Model& m, const std::vector<double>& x, const std::vector<double>& y);
 double interior_objective(const Model& m);
 double interior_col(const Model& m, int j);    // 1-based
 double interior_row(const Model& m, int row);  // 1-based: the row's activity

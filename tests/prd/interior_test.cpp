@@ -105,5 +105,46 @@ TEST(Interior, ThePointedArchMovesEveryStepAndCollapsesAsInGlpk) {
   expect_same_run(c, "pointed arch");
 }
 
+// The tests a solution must pass before it is taken (prd/interior.hpp), each shown to refuse
+// what it is there for: on the first LP of a wall hanging from its still half, the interior
+// point's solution passes; a force on a corner the step opens (complementarity, and the duality
+// gap it makes), a pull on a loaded corner (a tension), a motion into a closed joint (a
+// penetration), or every force one percent larger (no equilibrium) does not.
+TEST(Interior, ItsOptimalityTestsRefuseWhatTheyAreFor) {
+  BrickWall w = small_wall();
+  w.ground_split = 1.8;
+  const Case c = brick_wall(w);
+  prd_detail::Model m = prd_detail::build_model(c, c.prd.contact_tolerance);
+  const double h = c.motion.step;
+  prd_detail::update_lp(m, h, h, h);
+  ASSERT_TRUE(prd_detail::solve_interior(m));
+  const size_t rows = m.row_type.size();
+  std::vector<double> x(m.ncols + 1), y(rows);
+  for (int j = 1; j <= m.ncols; ++j) x[j] = prd_detail::interior_col(m, j);
+  for (size_t i = 0; i < rows; ++i) y[i] = prd_detail::interior_dual(m, static_cast<int>(i) + 1);
+  ASSERT_TRUE(prd_detail::interior_optimal(m, x, y));
+  size_t open = rows, loaded = rows;
+  for (size_t i = 0; i < rows; ++i) {
+    if (m.row_type[i] != GLP_LO) continue;
+    const double slack = prd_detail::interior_row(m, static_cast<int>(i) + 1) - m.row_lb[i];
+    if (open == rows && slack > 0.5) open = i;
+    if (loaded == rows && y[i] > 1e-3) loaded = i;
+  }
+  ASSERT_LT(open, rows) << "no corner the step opens";
+  ASSERT_LT(loaded, rows) << "no loaded corner";
+  std::vector<double> yo = y;
+  yo[open] = 1e-3;
+  EXPECT_FALSE(prd_detail::interior_optimal(m, x, yo)) << "a force across an open corner";
+  std::vector<double> yt = y;
+  yt[loaded] = -1e-3;
+  EXPECT_FALSE(prd_detail::interior_optimal(m, x, yt)) << "a tension";
+  std::vector<double> xp = x;
+  for (int q = 0; q < static_cast<int>(m.row_coef[7 * loaded]); ++q) xp[m.row_cols[6 * loaded + q]] -= 1e-5 * m.row_coef[7 * loaded + 1 + q];
+  EXPECT_FALSE(prd_detail::interior_optimal(m, xp, y)) << "a penetration";
+  std::vector<double> ys = y;
+  for (double& f : ys) f *= 1.01;
+  EXPECT_FALSE(prd_detail::interior_optimal(m, x, ys)) << "no equilibrium";
+}
+
 }  // namespace
 }  // namespace masonry
