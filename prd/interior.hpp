@@ -16,10 +16,12 @@
 // closed) towards rest, as far as the rows allow. Where the optimum is unique (a vertex) that
 // changes nothing.
 //
-// A solution is taken only where it passes tests of optimality as strict as the kept basis's
-// (kept_basis.hpp): every row within 0.5e-7 of its bound (the LP's units: the step), the corner
-// forces compressive, every block in equilibrium under the loads and its joint forces, and each
-// corner force's work over its gap negligible (complementarity). Otherwise GLPK solves.
+// A solution is taken only where it passes the kept basis's tests of optimality (kept_basis.hpp):
+// every row within 0.5e-7 of its bound (the LP's units: the step), the corner forces compressive
+// and each that carries a force at its bound (complementarity), every block in equilibrium under
+// the loads and its joint forces (also within 1e-10 of the forces that meet at it), and the
+// duality gap within 1e-7 of the loads. Otherwise GLPK solves. The forces are an interior state,
+// not a vertex, and may carry self-stress of any size (prd/README.md, "The interior point").
 #pragma once
 
 #include <memory>
