@@ -34,6 +34,9 @@ struct InteriorValues {
   // The last solution: x per column (1-based), the activity and dual of each LP row (0-based).
   std::vector<double> x, row, dual;
   double obj = 0;
+  // The optimality test's work (per LP row, per column), kept so that testing the last solution at
+  // every step of a run allocates nothing once sized.
+  std::vector<double> ax, g, size;
   InteriorValues() {
     cholmod_start(&cc);
     cc.print = 0;  // a failed factorisation is handled here (more regularisation), not printed
@@ -159,7 +162,9 @@ void normal_solve(const Model& m, InteriorValues& v, const std::vector<double>& 
 
 // Whether (x, y) is optimal for the LP update_lp wrote (the tests of interior.hpp); the rows'
 // activities in ax.
-bool optimal(const Model& m, const std::vector<double>& x, const std::vector<double>& y, std::vector<double>& ax) {
+// g and size: work space of the equilibrium test.
+bool optimal(const Model& m, const std::vector<double>& x, const std::vector<double>& y, std::vector<double>& ax, std::vector<double>& g,
+             std::vector<double>& size) {
   activities(m, x, ax);
   for (size_t i = 0; i < ax.size(); ++i) {
     if (!std::isfinite(ax[i]) || !std::isfinite(y[i])) return false;
@@ -174,7 +179,6 @@ bool optimal(const Model& m, const std::vector<double>& x, const std::vector<dou
       return false;
     }
   }
-  std::vector<double> g, size;
   transposed(m, y, g, &size);
   for (int j = 1; j <= m.ncols; ++j)
     if (!(std::abs(m.obj_coef[j] - g[j]) <= kDualEps + kDualRel * size[j])) return false;
@@ -346,7 +350,7 @@ bool solve_interior(Model& m) {
       if (is_lo(m, i) && !tight[i] && adx[i] < 0) a = std::min(a, std::max(0.0, ax[i] - m.row_lb[i]) / -adx[i]);
     std::vector<double> moved(n + 1);
     for (int j = 0; j <= n; ++j) moved[j] = x[j] + a * d[j];
-    if (optimal(m, moved, y, ax)) {
+    if (optimal(m, moved, y, ax, g, size)) {
       v.x = moved;
       v.dual = y;
       keep(m, v, ax);
@@ -354,15 +358,15 @@ bool solve_interior(Model& m) {
     }
   }
   // Where the face could not be followed, the interior point's own optimum, if it is one.
-  if (!optimal(m, x, y, ax)) return false;
+  if (!optimal(m, x, y, ax, g, size)) return false;
   v.dual = y;
   keep(m, v, ax);
   return true;
 }
 
 bool interior_optimal(const Model& m, const std::vector<double>& x, const std::vector<double>& y) {
-  std::vector<double> ax;
-  return x.size() == static_cast<size_t>(m.ncols) + 1 && y.size() == m.row_type.size() && optimal(m, x, y, ax);
+  std::vector<double> ax, g, size;
+  return x.size() == static_cast<size_t>(m.ncols) + 1 && y.size() == m.row_type.size() && optimal(m, x, y, ax, g, size);
 }
 
 bool interior_still_optimal(Model& m) {
@@ -370,28 +374,29 @@ bool interior_still_optimal(Model& m) {
   is.own = false;
   if (!is.held || !is.v) return false;
   InteriorValues& v = *is.v;
-  std::vector<double> ax;
-  // A row the contact state has freed since (a joint that opened: its no-sliding row) carries no
-  // force; the shear the interior point left on it is the barrier's remainder where it is within
-  // the dual tolerance, and the equilibrium test below sees what setting it to zero does.
-  // A joint's shear is the dual of its one no-sliding row, at its first closed corner
-  // (Model::sliding_row); where that corner opened, the row is the other corner's now, the same
-  // constraint for a rigid relative motion, and the shear goes with it.
-  if (v.dual.size() == m.row_type.size())
-    for (size_t k = 0; 4 * k + 3 < v.dual.size(); ++k) {
-      double& a = v.dual[4 * k + 1];
-      double& b = v.dual[4 * k + 3];
-      if (m.row_type[4 * k + 1] == GLP_FR && m.row_type[4 * k + 3] == GLP_FX && b == 0) std::swap(a, b);
-      if (m.row_type[4 * k + 3] == GLP_FR && m.row_type[4 * k + 1] == GLP_FX && a == 0) std::swap(a, b);
-    }
-  if (v.dual.size() == m.row_type.size())
-    for (size_t i = 0; i < v.dual.size(); ++i)
-      if (m.row_type[i] == GLP_FR && std::abs(v.dual[i]) <= kDualEps) v.dual[i] = 0;
-  if (v.x.size() != static_cast<size_t>(m.ncols) + 1 || v.dual.size() != m.row_type.size() || !optimal(m, v.x, v.dual, ax)) {
+  if (v.x.size() != static_cast<size_t>(m.ncols) + 1 || v.dual.size() != m.row_type.size()) {
     is.held = false;
     return false;
   }
-  keep(m, v, ax);
+  // A joint's shear is the dual of its one no-sliding row, at its first closed corner
+  // (Model::sliding_row); where that corner opened, the row is the other corner's now, the same
+  // constraint for a rigid relative motion, and the shear goes with it.
+  for (size_t k = 0; 4 * k + 3 < v.dual.size(); ++k) {
+    double& a = v.dual[4 * k + 1];
+    double& b = v.dual[4 * k + 3];
+    if (m.row_type[4 * k + 1] == GLP_FR && m.row_type[4 * k + 3] == GLP_FX && b == 0) std::swap(a, b);
+    if (m.row_type[4 * k + 3] == GLP_FR && m.row_type[4 * k + 1] == GLP_FX && a == 0) std::swap(a, b);
+  }
+  // A row the contact state has freed since (a joint that opened: its no-sliding row) carries no
+  // force; the shear the interior point left on it is the barrier's remainder where it is within
+  // the dual tolerance, and the equilibrium test below sees what setting it to zero does.
+  for (size_t i = 0; i < v.dual.size(); ++i)
+    if (m.row_type[i] == GLP_FR && std::abs(v.dual[i]) <= kDualEps) v.dual[i] = 0;
+  if (!optimal(m, v.x, v.dual, v.ax, v.g, v.size)) {
+    is.held = false;
+    return false;
+  }
+  keep(m, v, v.ax);
   return true;
 }
 

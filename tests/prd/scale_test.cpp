@@ -26,6 +26,16 @@ Case with_weight_scale(Case c, double density, double gravity, double depth = 0)
   return c;
 }
 
+// The case with every length scaled by s: the blocks, the points the supports turn about, the
+// contact tolerance (the step, a length or an angle, is the caller's).
+Case with_lengths_scaled(Case c, double s) {
+  for (Block& b : c.blocks)
+    for (Vec2& v : b.vertices) v *= s;
+  for (SupportMotion& m : c.motion.supports) m.about *= s;
+  c.prd.contact_tolerance *= s;
+  return c;
+}
+
 // Every step's open corners, and the forces over the total weight.
 void expect_same_run(const RunResult& ref, const RunResult& r, const std::string& what) {
   EXPECT_EQ(r.status, ref.status) << what;
@@ -94,12 +104,8 @@ TEST(PrdScale, GeometryScaledScalesTheCapacity) {
   const Case base = standard_file("pointed-arch");
   const RunResult ref = prd_run(base, PrdSettings::from_case(base));
   for (double s : {1e-3, 1e2}) {
-    Case c = base;
-    for (Block& b : c.blocks)
-      for (Vec2& v : b.vertices) v *= s;
-    for (SupportMotion& m : c.motion.supports) m.about *= s;
-    c.motion.step *= s;
-    c.prd.contact_tolerance *= s;
+    Case c = with_lengths_scaled(base, s);
+    c.motion.step *= s;  // a translation: d is a length
     const RunResult r = prd_run(c, PrdSettings::from_case(c));
     EXPECT_EQ(r.status, ref.status) << s;
     EXPECT_EQ(r.stable_steps, ref.stable_steps) << s;
@@ -120,11 +126,7 @@ TEST(PrdScale, AnAdaptiveTiltIsTheSameAtAnyScale) {
   ASSERT_EQ(ref.status, RunStatus::collapse);
   EXPECT_NEAR(ref.capacity, std::atan(0.5), 1e-3 * std::atan(0.5));
   for (double s : {1e-2, 1e2}) {
-    Case c = base;
-    for (Block& b : c.blocks)
-      for (Vec2& v : b.vertices) v *= s;
-    for (SupportMotion& m : c.motion.supports) m.about *= s;
-    c.prd.contact_tolerance *= s;
+    const Case c = with_lengths_scaled(base, s);  // a turn: d, an angle, stays
     const RunResult r = prd_run(c, PrdSettings::from_case(c));
     EXPECT_EQ(r.status, ref.status) << s;
     EXPECT_EQ(r.steps.size(), ref.steps.size()) << s;
