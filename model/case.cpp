@@ -186,7 +186,8 @@ struct Reader : FieldReader<CaseError, json> {
 // far (the pointed arch's snap: 4 mm, 0.2% of it), and 1e-9 of the scene made the settling itself
 // a collapse. Derived quantities must be finite before any step.
 void check_scales(const Case& c, const Reader& r) {
-  const double L = scene_size(c);
+  const Bounds scene = scene_bounds(c);
+  const double L = scene.size();
   if (!(std::isfinite(L) && L > 0)) r.fail("blocks", "the scene has no finite size");
   // The step against the scene: what a support point travels per step, its translation plus
   // its turn times the scene size (so an angular step counts as the arc it turns the scene
@@ -209,7 +210,7 @@ void check_scales(const Case& c, const Reader& r) {
   const Vec2 P = dead_load_resultant(c);
   if (!(P.norm() > 0)) r.fail("case", "field 'gravity': nothing loads the structure (gravity 0 and no loads)");
   for (const SupportMotion& m : c.motion.supports) {
-    const double travel = c.motion.step * c.motion.max_steps * support_travel_per_d(m, scene_bounds(c));
+    const double travel = c.motion.step * c.motion.max_steps * support_travel_per_d(m, scene);
     if (!std::isfinite(travel) || travel > kMaxCoordinate)
       r.fail("motion of block '" + printable(c.blocks[m.block].id) + "'", "the support would travel beyond 1e5 m over max_steps");
   }

@@ -191,13 +191,6 @@ void validate_geometry(const Case& c);
 // Polygon helpers (any orientation).
 double signed_area(const std::vector<Vec2>& poly);
 Vec2 centroid(const std::vector<Vec2>& poly);
-// How far a point a support carries travels per unit of d, m/m: its translation plus its
-// rotation times its lever, the scene's size L plus how far the point it turns about stands
-// outside the scene's bounds (a slab turning about a hinge 4 m from a 1 m stack carries it on a
-// lever of 4 m, not 1); for the case, the largest over its supports (0 where none moves).
-struct Bounds;
-double support_travel_per_d(const SupportMotion& m, const Bounds& scene);
-double support_travel_per_d(const Case& c);
 // How far p lies outside the polygon (0 inside or on it), m: the distance to its nearest edge
 // where an even-odd crossing test puts p outside.
 double distance_outside(const std::vector<Vec2>& poly, const Vec2& p);
@@ -219,6 +212,12 @@ Bounds bounds(const std::vector<Vec2>& points);
 Bounds scene_bounds(const Case& c);
 // Largest extent of all blocks' bounding box: the scene size used to scale tolerances.
 double scene_size(const Case& c);
+// How far a point a support carries travels per unit of d, m/m: its translation plus its
+// rotation times its lever, the scene's size L plus how far the point it turns about stands
+// outside the scene's bounds (a slab turning about a hinge 4 m from a 1 m stack carries it on a
+// lever of 4 m, not 1); for the case, the largest over its supports (0 where none moves).
+double support_travel_per_d(const SupportMotion& m, const Bounds& scene);
+double support_travel_per_d(const Case& c);
 // The SI unit of the path parameter d, as reports write it: "rad" when every moving support only
 // turns (d is then an angle, a tilt), else "m" (a support that translates, with or without
 // turning, moves by d metres per unit).
