@@ -198,7 +198,16 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
     }
     case SatCache::kTouching:
       cache.slack -= motion;
-      if (cache.slack > 0) {
+      cache.touch -= motion;
+      if (cache.slack > 0 && cache.touch > 0) {
+        // Both separations were at least 2 touch below zero and each has moved by less than
+        // touch since: still touching, and the flip is the cached one (slack).
+        edge_a = cache.edge_a;
+        edge_b = cache.edge_b;
+        flip = cache.flip;
+        inc = cache.inc;
+        searched = true;
+      } else if (cache.slack > 0) {
         edge_a = cache.edge_a;
         edge_b = cache.edge_b;
         sep_a = edge_separation(edge_a, va, na, vb, cb);
@@ -208,6 +217,7 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
         flip = sep_b > sep_a + k_tol;
         inc = cache.inc;
         searched = flip == cache.flip;  // always, by the slack; a mismatch would mean a bad bound
+        cache.touch = -0.5 * std::max(sep_a, sep_b);
       }
       break;
     case SatCache::kNone: break;
@@ -251,6 +261,7 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
     cache.inc = static_cast<unsigned char>(inc);
     // The incident edge's lead is a difference of dot products of unit normals; it changes by at
     // most twice the relative rotation, and the lever turns rotation into motion.
+    cache.touch = -0.5 * std::max(sep_a, sep_b);
     cache.slack = 0.25 * std::min({sep_a - second_a, sep_b - second_b, std::abs(sep_b - (sep_a + k_tol)), (second_dot - min_dot) * lever});
   }
   const Vec2 *v1 = flip ? vb : va, *n1 = flip ? nb : na, *v2 = flip ? va : vb;

@@ -57,6 +57,9 @@ struct SatCache {
   // before it might change: touching, the decisions (best edges, flip, incident edge); apart,
   // the separation itself.
   double slack = 0.0;
+  // Touching: how much more relative motion both separations (of the best edges of A and of B)
+  // can take and still be <= 0, so the pair is still touching without computing them.
+  double touch = 0.0;
 };
 
 // Same result as collide(), bit for bit. `motion` bounds how much any separation n_i . (w_j - u_i)
