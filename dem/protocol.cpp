@@ -205,7 +205,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     if (segment > 0 && (in_cap + 1) % (2 * segment) == 0) {
       const long long j = (in_cap + 1) / (2 * segment);  // the window is 2j segments long, its middle at segment j
       check_energy(m, lim.energy_floor, s);                 // a diverging integration also drifts: it is an error, never a collapse
-      if (j >= kFirstLook && j < kLookSegments / 2 && speeding_up_far_out(m, c, start, cap_start, looks[size_t(j)], lim)) {
+      if (lim.read_early && j >= kFirstLook && j < kLookSegments / 2 && speeding_up_far_out(m, c, start, cap_start, looks[size_t(j)], lim)) {
         o.end = HoldEnd::collapse;
         break;
       }
@@ -224,7 +224,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     const bool pushed_as_hard = unbalanced[1] >= unbalanced[0];  // the halves have equal lengths, to a cycle
     const bool creeping = o.second_half > lim.creep_floor && o.second_half >= kCreepRatio * o.first_half && pushed_as_hard;
     unbalanced[0] = unbalanced[1] = 0;
-    if (speeding_up_far_out(m, c, start, cap_start, mid, lim)) {
+    if (lim.read_early && speeding_up_far_out(m, c, start, cap_start, mid, lim)) {
       // Collapsing more slowly than the cap (on the settlement cathedral, a block 0.47 m from its
       // start still moving at 0.13 m/s after 30 s).
       o.end = HoldEnd::collapse;

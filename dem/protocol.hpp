@@ -39,6 +39,11 @@ struct Limits {
   // m: the least travel over half a cap that counts as motion in the hold's verdict at the cap
   // (below it a creep is not told from round-off and the last vibrations).
   double creep_floor = 0;
+  // Whether a hold calls a motion far out and speeding up a collapse before it has drifted
+  // collapse_drift (over the cap's early windows and at the cap). Off while dem_run's follow
+  // stage holds a creep on to see where it ends: a hinge passing to another joint moves that far,
+  // speeding up, and then settles.
+  bool read_early = true;
 };
 
 struct HoldOutcome {

@@ -115,6 +115,7 @@ ojson bracket_json(const CollapseBracket& b) {
   for (const BracketTrial& t : b.trials) {
     ojson x = {{"d", json_number(t.d)}, {"end", t.end}, {"cycles", t.cycles}};
     if (t.confirm) x["confirm"] = true;
+    if (t.followed) x["followed"] = true;
     trials.push_back(x);
   }
   return {{"equilibrium", json_number(b.equilibrium)}, {"failed", json_number(b.failed)}, {"width", json_number(b.width)}, {"trials", trials}};

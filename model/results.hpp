@@ -193,6 +193,7 @@ struct BracketTrial {
   std::string end;  // how its hold ended: "equilibrium", "collapse", "creep" or "undecided"
   long long cycles = 0;
   bool confirm = false;  // the confirming hold of DemSettings::confirm_collapse
+  bool followed = false;  // the bracket's creeping upper end held on (dem_run's follow stage)
 };
 struct CollapseBracket {
   double equilibrium = 0.0, failed = 0.0, width = 0.0;  // m

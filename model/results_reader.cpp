@@ -317,9 +317,10 @@ void read_dem_fields(const Reader& in, const ojson& j, RunResult& r) {
     const ojson& trials = in.array(x, w, "trials");
     for (size_t k = 0; k < trials.size(); ++k) {
       const std::string wk = item(member(w, "trials"), k);
-      in.only(trials[k], wk, {"d", "end", "cycles", "confirm"});
+      in.only(trials[k], wk, {"d", "end", "cycles", "confirm", "followed"});
       b.trials.push_back({in.maybe(in.need(trials[k], wk, "d"), wk, "d"), in.hold_end(in.need(trials[k], wk, "end"), wk, "end"),
-                          in.integer(trials[k], wk, "cycles", 0), in.boolean(trials[k], wk, "confirm", false)});
+                          in.integer(trials[k], wk, "cycles", 0), in.boolean(trials[k], wk, "confirm", false),
+                          in.boolean(trials[k], wk, "followed", false)});
     }
     r.collapse_bracket = std::move(b);
   }
