@@ -142,9 +142,10 @@ bool speeding_up_far_out(const DemModel& m, const Case& c, const std::vector<Vec
 }
 }  // namespace
 
-HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim, long long watch) {
+HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim, long long watch, const std::vector<Vec2>* drift_from) {
   HoldOutcome o;
   const std::vector<Vec2> start = positions(m, c);
+  const std::vector<Vec2>& origin = drift_from ? *drift_from : start;
   const long long budget = static_cast<long long>(std::ceil(s.hold_time / m.dt()));
   double window_peak = 0, last_peak = INFINITY;
   long long window_end = std::max(1LL, std::llround(static_cast<double>(kFirstWindow) / default_cycles_per_cycle(s)));
@@ -186,7 +187,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     }
     if (k % kCheckEvery == 0) {
       check_energy(m, lim.energy_floor, s);
-      if (largest_move(m, c, start) > lim.collapse_drift) {
+      if (largest_move(m, c, origin) > lim.collapse_drift) {
         o.end = HoldEnd::collapse;
         break;
       }

@@ -68,8 +68,11 @@ double largest_distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b, 
 // the collapse criteria go on being checked, and only an equilibrium after that ends it. A
 // structure tipping past an unstable equilibrium starts from rest with an unbalanced force
 // below the tolerance, so it meets the equilibrium criteria at first and only its growing motion
-// shows what it is.
-HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim, long long watch = 0);
+// shows what it is. `drift_from` (default: where the hold starts) is where the collapse drift
+// counts from: a creep held on cap after cap (dem_run's follow stage) has fallen once it is
+// collapse_drift from where it crept from, however few caps that took.
+HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim, long long watch = 0,
+                 const std::vector<Vec2>* drift_from = nullptr);
 
 struct MoveOutcome {
   bool collapsed = false;  // a block moved farther than lim.move_drift: the move stopped there

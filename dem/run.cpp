@@ -303,7 +303,7 @@ bool confirm(Run& u, Failure& f) {
 // mechanism over a finite motion to another branch, and starts from rest at the limit, so it can
 // take longer than the cap: on a segmental arch whose joints are stiff against its weights
 // (density 2 kg/m^3) the hinge passing from joint 1 to joint 7 took 74 s from rest to settle, and
-// the run ended on a "limit point" at 0.106 m where the structure stands and goes on to 0.317 m
+// the run ended on a "limit point" at 0.106 m where the structure stands and goes on to 0.32 m
 // (dem/README.md, "Protocol", stage 5). So the creeping state is held on, a cap at a time, while it
 // speeds up: it ends in an equilibrium (another branch: recorded, and the increments go on from
 // there, off the grid), in a collapse (located), or, once it no longer speeds up or after
@@ -313,28 +313,27 @@ bool follow(Run& u, Failure& f) {
   u.m.restore(f.state);
   u.m.set_support_parameter(f.d);
   u.lim.ke_collapse = 10 * (u.ke_height_per_d * u.r.total_weight) * (f.d - f.from);  // the failed attempt's runaway scale
-  // Only a drift of collapse_drift or a runaway calls a collapse here: a hinge passing to
-  // another joint moves a tenth of that, speeding up, before it settles.
+  // Only a drift of collapse_drift from where the following began, or a runaway, calls a
+  // collapse here, not the reading of a slow collapse from a tenth of that: a hinge passing to
+  // another joint moves that far, speeding up, and then settles.
+  const std::vector<Vec2> here = dem::positions(u.m, u.c);
   u.lim.read_early = false;
-  bool settled = false;
-  while (f.followed < kFollowCaps && f.attempt.hold.end == HoldEnd::creep && f.attempt.hold.second_half > f.attempt.hold.first_half) {
+  HoldOutcome& h = f.attempt.hold;
+  while (f.followed < kFollowCaps && h.end == HoldEnd::creep && h.second_half > h.first_half) {
     const long long c0 = u.m.cycles();
-    const HoldOutcome h = dem::hold(u.m, u.c, u.s, u.lim);
-    const long long cycles = u.m.cycles() - c0;
+    h = dem::hold(u.m, u.c, u.s, u.lim, 0, &here);
     ++f.followed;
-    f.trials.push_back({f.d, dem::hold_end_name(h.end), cycles, false, true});
-    f.attempt.hold = h;
-    f.attempt.cycles += cycles;
-    if (h.end == HoldEnd::equilibrium) {
-      settled_at(u, f.attempt, f.d, true);
-      u.on_grid = false;
-      settled = true;
-      break;
-    }
-    f.state = u.m.save();
+    f.attempt.cycles += u.m.cycles() - c0;
+    f.trials.push_back({f.d, dem::hold_end_name(h.end), u.m.cycles() - c0, false, true});
   }
   u.lim.read_early = true;
-  return settled;
+  if (h.end == HoldEnd::equilibrium) {
+    settled_at(u, f.attempt, f.d, true);
+    u.on_grid = false;
+    return true;
+  }
+  if (f.followed > 0) f.state = u.m.save();
+  return false;
 }
 
 // The end of a located failure: the failed state nearest the capacity closes the record.
