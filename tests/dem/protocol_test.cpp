@@ -264,9 +264,9 @@ TEST(DemBracket, ALimitPointIsALocatedCollapse) {
 
 // A limit point of one branch is not the capacity where the structure can pass to another. A
 // segmental arch (R 1.5 m, t 0.2 m, 120 degrees, 7 voussoirs, a 3 kN load on the second voussoir)
-// on a spreading support forms three hinges at once; near d = 0.05 m the one at the springing
-// joint of the loaded side closes while another opens further up (a hinge passing to a joint
-// nearby), a finite motion through a mechanism that starts from rest. With holds capped at 1 s
+// on a spreading support forms three hinges at once; near d = 0.05 m the one between the loaded
+// side's first two voussoirs closes while one at the other springing opens (a hinge passing to
+// another joint), a finite motion through a mechanism that starts from rest. With holds capped at 1 s
 // it took longer than a cap, every bracket trial past it crept, and the run ended on a "limit
 // point" at 0.054 m. Held on while it speeds up (dem_run's follow stage), the creep settles on
 // the other branch and the run goes on to the arch's collapse: where the default cap (30 s,
