@@ -161,6 +161,12 @@ inline __attribute__((always_inline)) int clip_segment(ClipVertex out[2], const 
   return n;
 }
 
+// How much relative motion a touching pair can take before either separation could reach zero:
+// half the depth of the shallower, the half for rounding, less an absolute 1e-12 of the lever
+// (the vertices are rotated copies, whose rounding the motion bound, taken from the stored poses,
+// does not count: a few ulps of the coordinates).
+inline double touch_margin(double sep_a, double sep_b, double lever) { return -0.5 * std::max(sep_a, sep_b) - 1e-12 * lever; }
+
 }  // namespace
 
 bool collide(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, const Vec2* nb, int cb, Manifold& m) {
@@ -200,8 +206,8 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
       cache.slack -= motion;
       cache.touch -= motion;
       if (cache.slack > 0 && cache.touch > 0) {
-        // Both separations were at least 2 touch below zero and each has moved by less than
-        // touch since: still touching, and the flip is the cached one (slack).
+        // Each separation was at least twice the touch it started with below zero, and has
+        // moved by less than that since: still touching, and the flip is the cached one (slack).
         edge_a = cache.edge_a;
         edge_b = cache.edge_b;
         flip = cache.flip;
@@ -217,7 +223,7 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
         flip = sep_b > sep_a + k_tol;
         inc = cache.inc;
         searched = flip == cache.flip;  // always, by the slack; a mismatch would mean a bad bound
-        cache.touch = -0.5 * std::max(sep_a, sep_b);
+        cache.touch = touch_margin(sep_a, sep_b, lever);
       }
       break;
     case SatCache::kNone: break;
@@ -261,7 +267,7 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
     cache.inc = static_cast<unsigned char>(inc);
     // The incident edge's lead is a difference of dot products of unit normals; it changes by at
     // most twice the relative rotation, and the lever turns rotation into motion.
-    cache.touch = -0.5 * std::max(sep_a, sep_b);
+    cache.touch = touch_margin(sep_a, sep_b, lever);
     cache.slack = 0.25 * std::min({sep_a - second_a, sep_b - second_b, std::abs(sep_b - (sep_a + k_tol)), (second_dot - min_dot) * lever});
   }
   const Vec2 *v1 = flip ? vb : va, *n1 = flip ? nb : na, *v2 = flip ? va : vb;

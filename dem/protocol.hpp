@@ -69,8 +69,8 @@ double largest_distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b, 
 // structure tipping past an unstable equilibrium starts from rest with an unbalanced force
 // below the tolerance, so it meets the equilibrium criteria at first and only its growing motion
 // shows what it is. `drift_from` (default: where the hold starts) is where the collapse drift
-// counts from: a creep held on cap after cap (dem_run's follow stage) has fallen once it is
-// collapse_drift from where it crept from, however few caps that took.
+// counts from: a creep held on hold after hold (dem_run's follow stage) has fallen once it is
+// collapse_drift from where the following began, however many holds that took.
 HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits& lim, long long watch = 0,
                  const std::vector<Vec2>* drift_from = nullptr);
 

@@ -43,10 +43,11 @@ double travel_per_d(const Case& c) {
 // made it take.
 constexpr double kMoveAccel = 0.01;
 
-// The most caps the follow stage holds a creeping upper end on (follow()): it bounds the cost of
-// a limit point, not its verdict. The stiff segmental arch's hinge needed some 2.5 caps of the
-// default 30 s from rest to pass to its neighbour (74 s).
-constexpr int kFollowCaps = 8;
+// The most holds the follow stage holds a creeping upper end on (follow()), each a cap long (up
+// to four where its motion seems to die out: dem::hold's extensions): it bounds the cost of a
+// limit point, not its verdict. The stiff segmental arch's hinge needed some 2.5 caps of the
+// default 30 s from rest to pass to another joint (74 s).
+constexpr int kFollowHolds = 8;
 
 // One attempt to reach d1 from an equilibrium at d0: move, then hold.
 struct Attempt {
@@ -103,7 +104,7 @@ struct Failure {
   double from = 0;    // the equilibrium the failed attempt started from
   DemSnapshot state;  // the failed state
   std::vector<BracketTrial> trials;
-  int followed = 0;  // caps the follow stage held the failed state on
+  int followed = 0;  // holds the follow stage held the failed state on
 };
 
 // Every option as the case set it (model/options.cpp), then what the run derived from them where
@@ -292,6 +293,7 @@ bool confirm(Run& u, Failure& f) {
     return false;
   }
   f.attempt = a;
+  f.from = u.d_eq;  // the failed attempt now starts there (its runaway scale: follow())
   f.state = u.m.save();
   return true;
 }
@@ -307,7 +309,7 @@ bool confirm(Run& u, Failure& f) {
 // (dem/README.md, "Protocol", stage 5). So the creeping state is held on, a cap at a time, while it
 // speeds up: it ends in an equilibrium (another branch: recorded, and the increments go on from
 // there, off the grid), in a collapse (located), or, once it no longer speeds up or after
-// kFollowCaps caps, the limit point stands. Whether the run goes on.
+// kFollowHolds holds, the bracket's verdict stands. Whether the run goes on.
 bool follow(Run& u, Failure& f) {
   if (f.attempt.hold.end != HoldEnd::creep) return false;
   u.m.restore(f.state);
@@ -318,21 +320,34 @@ bool follow(Run& u, Failure& f) {
   // another joint moves that far, speeding up, and then settles.
   const std::vector<Vec2> here = dem::positions(u.m, u.c);
   u.lim.read_early = false;
-  HoldOutcome& h = f.attempt.hold;
-  while (f.followed < kFollowCaps && h.end == HoldEnd::creep && h.second_half > h.first_half) {
+  HoldOutcome h = f.attempt.hold;
+  long long cycles = 0;
+  double time = 0;
+  while (f.followed < kFollowHolds && h.end == HoldEnd::creep && h.second_half > h.first_half) {
     const long long c0 = u.m.cycles();
     h = dem::hold(u.m, u.c, u.s, u.lim, 0, &here);
     ++f.followed;
-    f.attempt.cycles += u.m.cycles() - c0;
+    cycles += u.m.cycles() - c0;
+    time += h.time;
     f.trials.push_back({f.d, dem::hold_end_name(h.end), u.m.cycles() - c0, false, true});
   }
   u.lim.read_early = true;
   if (h.end == HoldEnd::equilibrium) {
+    // The record counts the whole attempt's cycles; its hold is the one that settled.
+    f.attempt.hold = h;
+    f.attempt.cycles += cycles;
+    u.r.settled_creeps.push_back({f.d, f.followed, time});
     settled_at(u, f.attempt, f.d, true);
     u.on_grid = false;
     return true;
   }
-  if (f.followed > 0) f.state = u.m.save();
+  if (h.end == HoldEnd::collapse) {
+    f.attempt.hold = h;
+    f.attempt.cycles += cycles;
+    f.state = u.m.save();
+  }
+  // Otherwise (still creeping, or slowing down without settling) the bracket's verdict stands,
+  // with the state it found: the followed holds are in its trials.
   return false;
 }
 
@@ -358,7 +373,7 @@ void close(Run& u, const Failure& f) {
   if (!any_collapse && limit_point) {
     msg << "limit point: no equilibrium at d = " << f.d << " " << unit << ", which creeps without slowing down (" << f.attempt.hold.second_half
         << " m over the last half cap after " << f.attempt.hold.first_half << " m";
-    if (f.followed > 0) msg << ", held on " << f.followed << " more cap" << (f.followed > 1 ? "s" : "");
+    if (f.followed > 0) msg << "; held on " << f.followed << " more hold" << (f.followed > 1 ? "s" : "") << " without settling";
     msg << "), " << width << " " << unit << " past the last equilibrium";
     u.r.limit_point = true;
   } else if (!u.r.collapsed) {

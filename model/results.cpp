@@ -243,6 +243,11 @@ ojson to_json(const RunResult& r, const Case& c) {
       u.push_back({{"d", json_number(f.d)}, {"reached_from", json_number(f.reached_from)}, {"settled_from", json_number(f.settled_from)}});
     j["unconfirmed_failures"] = u;
   }
+  if (!r.settled_creeps.empty()) {
+    ojson u = ojson::array();
+    for (const SettledCreep& f : r.settled_creeps) u.push_back({{"d", json_number(f.d)}, {"holds", f.holds}, {"time", json_number(f.time)}});
+    j["settled_creeps"] = u;
+  }
   if (r.sliding) {
     const SlidingSummary& x = *r.sliding;
     ojson o = ojson::object();

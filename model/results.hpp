@@ -203,6 +203,13 @@ struct CollapseBracket {
 struct UnconfirmedFailure {
   double d = 0.0, reached_from = 0.0, settled_from = 0.0;  // m
 };
+// A creep at the collapse bracket's upper end that settled when held on (dem_run's follow
+// stage): the structure passed to another branch at d, and the run went on.
+struct SettledCreep {
+  double d = 0.0;        // m
+  int holds = 0;         // holds it was held on for
+  double time = 0.0;     // s of model time those holds took
+};
 
 struct RunResult {
   std::string method;  // method_name(Method), or an outside solver's own name (known_method)
@@ -227,6 +234,7 @@ struct RunResult {
   // which creeps without slowing down; no runaway seen). Written only when true.
   bool limit_point = false;
   std::vector<UnconfirmedFailure> unconfirmed_failures;  // DEM (confirm_collapse)
+  std::vector<SettledCreep> settled_creeps;              // DEM (the follow stage)
 };
 
 // The method that made a run, where it is one of ours (an outside solver's run: nothing), and

@@ -332,6 +332,13 @@ void read_dem_fields(const Reader& in, const ojson& j, RunResult& r) {
     r.unconfirmed_failures.push_back({in.maybe(in.need(un[k], w, "d"), w, "d"), in.maybe(in.need(un[k], w, "reached_from"), w, "reached_from"),
                                       in.maybe(in.need(un[k], w, "settled_from"), w, "settled_from")});
   }
+  const ojson& sc = in.array(j, "results", "settled_creeps");
+  for (size_t k = 0; k < sc.size(); ++k) {
+    const std::string w = item("settled_creeps", k);
+    in.only(sc[k], w, {"d", "holds", "time"});
+    r.settled_creeps.push_back({in.maybe(in.need(sc[k], w, "d"), w, "d"), static_cast<int>(in.integer(sc[k], w, "holds", 0)),
+                                in.maybe(in.need(sc[k], w, "time"), w, "time")});
+  }
 }
 
 std::optional<SlidingSummary> read_sliding(const Reader& in, const ojson& x) {
@@ -415,7 +422,7 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
                  "events",       "collapse",
                  "wall_s",       "collapse_bracket",
                  "limit_point",  "unconfirmed_failures",
-                 "sliding"});
+                 "settled_creeps", "sliding"});
   const std::string format = in.text(in.need(j, w, "format"), w, "format");
   if (format != "masonry-results/1") in.fail(w, "field 'format' must be \"masonry-results/1\", not \"" + printable(format) + "\"");
   RunResult r;

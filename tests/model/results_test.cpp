@@ -161,6 +161,15 @@ TEST(ResultsReader, WhatPrdAndTheDemWriteReadsBackToTheSameFile) {
   ASSERT_TRUE(dem.steps.at(1).hold && dem.steps.at(1).settled);
   EXPECT_FALSE(is_equilibrium(dem, dem.steps.back()));  // the failed state closing the run
   expect_round_trip(dem, c);
+  // The follow stage's fields (a creep that settled when held on, a followed trial).
+  RunResult followed = dem;
+  followed.settled_creeps.push_back({0.01, 2, 31.5});
+  followed.collapse_bracket->trials.push_back({0.02, "creep", 1000, false, true});
+  expect_round_trip(followed, c);
+  const auto written = to_json(followed, c);
+  EXPECT_EQ(written["settled_creeps"].size(), 1u);
+  EXPECT_EQ(written["collapse_bracket"]["trials"].back().value("followed", false), true);
+  EXPECT_EQ(parse_results(written.dump(), c, "results.json").settled_creeps.at(0).holds, 2);
   // PRD with the sliding check and a corner held closed: their fields too.
   Case checked = with_option(with_option(c, "prd.sliding_check", true), "prd.hold_closed", nlohmann::json::array({"ground/block:B"}));
   const RunResult held = run_case(checked, Method::prd);
