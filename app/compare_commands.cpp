@@ -17,6 +17,7 @@
 #include "cases/generators.hpp"
 #include "compare/compare.hpp"
 #include "compare/report.hpp"
+#include "dem/dem.hpp"
 #include "model/io.hpp"
 #include "report/format.hpp"
 #include "runs/progress.hpp"
@@ -122,14 +123,19 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       for (size_t q = 0; q < runs.size(); ++q) runs[q].label += " " + std::filesystem::path(o.runs[q]).filename().string();
   } else {
     results.reserve(1 + std::max<size_t>(1, o.frictions.size()));
+    std::vector<double> phis = o.frictions;
+    if (phis.empty()) phis.push_back(c.dem.friction_angle);
+    const Case dem_case = o.dem_step ? with_option(c, option_key(&Motion::step), *o.dem_step) : c;
+    // The DEM's refusals before PRD runs (a large case's PRD can take minutes).
+    for (double phi : phis) {
+      const Case dc = with_option(dem_case, option_key(&DemOptions::friction_angle), phi);
+      dem_check(dc, DemSettings::from_case(dc));
+    }
     progress(o.quiet, "compare: PRD on " + c.name + " ...\n");
     RunProgress prd_progress("compare: prd", c.motion.step * c.motion.max_steps, 1.0, {}, path_unit(c));
     results.push_back(run_case(c, Method::prd, {o.out_dir + "/prd", o.quiet ? std::function<void(const RunResult&)>() : std::ref(prd_progress)}));
     progress(o.quiet, "compare: PRD capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
     runs.push_back({prd_label(results.back().settings.value("hold_closed", nlohmann::json::array())), nullptr, "prd"});
-    std::vector<double> phis = o.frictions;
-    if (phis.empty()) phis.push_back(c.dem.friction_angle);
-    const Case dem_case = o.dem_step ? with_option(c, option_key(&Motion::step), *o.dem_step) : c;
     for (double phi : phis) {
       const Case dc = with_option(dem_case, option_key(&DemOptions::friction_angle), phi);
       const std::string sub = phis.size() == 1 ? "dem" : "dem-phi" + num_text(phi);

@@ -121,4 +121,9 @@ class DemModel {
 // initial configuration settled under gravity) and after every increment.
 RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(const RunResult&)>& on_step = {});
 
+// Throws what dem_run would refuse the case and settings with before its first cycle (one line,
+// naming the file and field), and nothing else: a command that runs PRD first (compare) asks
+// this before, so a DEM refusal does not come after PRD's run.
+void dem_check(const Case& c, const DemSettings& s);
+
 }  // namespace masonry

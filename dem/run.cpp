@@ -390,17 +390,28 @@ void close(Run& u, const Failure& f) {
 
 }  // namespace
 
-RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(const RunResult&)>& on_step) {
-  // Every recorded state is a hold that settled, and a hold with local damping settles by that
-  // damping alone: at 0 nothing takes energy out of it (a block on its elastic joints rocks for
-  // ever, and each contact's opening and closing between cycles adds a little energy that then
-  // stays), so no hold can settle and the run could only end undecided or in the blow-up guard.
-  // Kinetic holds stop the blocks at each peak of the kinetic energy, and do settle.
+namespace {
+// Every recorded state is a hold that settled, and a hold with local damping settles by that
+// damping alone: at 0 nothing takes energy out of it (a block on its elastic joints rocks for
+// ever, and each contact's opening and closing between cycles adds a little energy that then
+// stays), so no hold can settle and the run could only end undecided or in the blow-up guard.
+// Kinetic holds stop the blocks at each peak of the kinetic energy, and do settle.
+void check_hold_damping(const Case& c, const DemSettings& s) {
   if (s.damping == 0 && s.hold_damping == HoldDamping::local)
     throw CaseError(c.source + ": dem: field '" + option_of(&DemOptions::damping).name + "' = 0 with " + option_key(&DemOptions::hold_damping) +
                     " local: nothing takes energy out of a hold, so none can settle (an undamped block rocks on its elastic joints for ever, "
                     "and the contacts' opening and closing between cycles add energy); set it above 0 (default 0.8) or " +
                     option_key(&DemOptions::hold_damping) + " kinetic");
+}
+}  // namespace
+
+void dem_check(const Case& c, const DemSettings& s) {
+  check_hold_damping(c, s);
+  const DemModel m(c, s);  // the model's own refusals: settings, time step, joints too soft
+}
+
+RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(const RunResult&)>& on_step) {
+  check_hold_damping(c, s);
   RunResult r;
   r.method = method_name(Method::dem);
   r.case_name = c.name;

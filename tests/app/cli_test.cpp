@@ -3,6 +3,7 @@
 // nothing but warnings and why it failed, and progress lines give the time left.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -204,6 +205,17 @@ TEST(CommandLine, SupportsThatDoNotMoveAreRefused) {
   EXPECT_EQ(r.rc, 2) << r.err;
   EXPECT_NE(r.err.find("no support moves"), std::string::npos) << r.err;
   EXPECT_EQ(run("check " + (dir.path / "still.json").string(), dir).rc, 0);
+}
+
+// A DEM refusal comes before PRD runs in `compare` (a large case's PRD takes minutes): nothing
+// is written, and the one line names the field.
+TEST(CommandLine, CompareRefusesTheDemBeforeRunningPrd) {
+  Scratch dir("cli-compare-refusal");
+  const std::filesystem::path out = dir.path / "o";
+  const Ran r = run("compare " + kTilt + " --out " + out.string() + " --quiet --damping 0", dir);
+  EXPECT_EQ(r.rc, 2) << r.err;
+  EXPECT_NE(r.err.find("field 'damping' = 0"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out / "prd")) << r.err;
 }
 
 // Every flag the options' table gives a command is in that command's help, with the option's key.
