@@ -3,6 +3,7 @@
 //   masonry validate [--quick] [--only NAME...] [--json FILE] [--markdown FILE] [--catalogue FILE]
 //                    [--solver 'COMMAND' [--solver-name NAME] [--solver-as prd|dem] [--solver-timeout S] [--solver-keep DIR]]
 // Exit code 0 when every row passes, 1 when one fails or errors, 2 for bad input (main()).
+#include <csignal>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -53,10 +54,12 @@ std::string solver_workdir(const std::string& keep) {
 // user's --solver-keep DIR is never removed.
 struct RemovedAtExit {
   std::string dir;
-  ~RemovedAtExit() {
+  void remove() {
     std::error_code ec;
     if (!dir.empty()) std::filesystem::remove_all(dir, ec);
+    dir.clear();
   }
+  ~RemovedAtExit() { remove(); }
 };
 
 std::string command_line(const Opts& o) {
@@ -118,7 +121,7 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                    std::vector<ValidationRow> rows;
                    RunCache cache;
                    const StudyProgress progress("validate", todo.size());
-                   for (size_t k = 0; k < todo.size(); ++k) {
+                   for (size_t k = 0; k < todo.size(); ++k) try {
                      const auto part = run_benchmark(
                          cat, *todo[k], cache,
                          [&](const ValidationRow& r) {
@@ -132,6 +135,13 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                      rows.insert(rows.end(), part.begin(), part.end());
                      // Finished rows are kept even when a later benchmark fails or the run is stopped.
                      if (!o->json.empty()) write_file_atomic(o->json, validation_json(cat, rows).dump(1) + "\n");
+                   } catch (const SolverInterrupted& e) {
+                     // Stopped (Ctrl-C) while the solver ran: it is killed; the temporary
+                     // directory goes, and the command ends by the same signal.
+                     temporary.remove();
+                     std::signal(e.signal, SIG_DFL);
+                     std::raise(e.signal);
+                     return 128 + e.signal;
                    }
                    std::cout << validation_table(rows);
                    const std::string failures = validation_failures(rows);

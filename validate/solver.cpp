@@ -43,6 +43,27 @@ struct Exit {
   int status = 0;  // the exit status, or 128 + the signal that ended it
 };
 
+// The signal that asked the command to stop while a solver ran (0: none). A handler may only set
+// it; the wait below reads it.
+volatile sig_atomic_t stop_signal = 0;
+extern "C" void on_stop_signal(int sig) { stop_signal = sig; }
+
+// SIGINT, SIGTERM and SIGHUP caught while the solver runs, the previous handlers back after.
+struct StopSignals {
+  static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+  struct sigaction old[3];
+  StopSignals() {
+    stop_signal = 0;
+    struct sigaction a {};
+    a.sa_handler = on_stop_signal;
+    sigemptyset(&a.sa_mask);
+    for (int k = 0; k < 3; ++k) sigaction(kSignals[k], &a, &old[k]);
+  }
+  ~StopSignals() {
+    for (int k = 0; k < 3; ++k) sigaction(kSignals[k], &old[k], nullptr);
+  }
+};
+
 // Runs `command` through /bin/sh in a process group of its own, stdin from /dev/null, stdout and
 // stderr to `log`; past `timeout_s` the whole group is killed (a solver's own child processes too).
 Exit run_shell(const std::string& command, const std::string& log, double timeout_s) {
@@ -61,6 +82,7 @@ Exit run_shell(const std::string& command, const std::string& log, double timeou
     _exit(127);
   }
   setpgid(pid, pid);  // as the child does: whichever runs first, the group exists before a kill
+  const StopSignals stops;
   using clock = std::chrono::steady_clock;
   const auto deadline = clock::now() + std::chrono::duration<double>(timeout_s);
   // Polled, from 1 ms up to 50 ms: a quick solver is not kept waiting, a slow one costs nothing.
@@ -70,6 +92,11 @@ Exit run_shell(const std::string& command, const std::string& log, double timeou
     const pid_t done = waitpid(pid, &st, WNOHANG);
     if (done == pid) return {false, WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st)};
     if (done < 0 && errno != EINTR) throw std::runtime_error(std::string("lost the solver's process: ") + std::strerror(errno));
+    if (stop_signal != 0) {
+      kill(-pid, SIGKILL);
+      waitpid(pid, &st, 0);
+      throw SolverInterrupted{stop_signal};
+    }
     if (clock::now() >= deadline) {
       kill(-pid, SIGKILL);
       waitpid(pid, &st, 0);

@@ -30,6 +30,14 @@ struct OutsideSolver {
 // the file and the JSON path).
 RunResult run_outside(const OutsideSolver& s, const Case& c, const std::string& label);
 
+// Thrown by run_outside when the command is sent SIGINT, SIGTERM or SIGHUP while the solver runs:
+// the solver (in a process group of its own, which a terminal's Ctrl-C does not reach) has been
+// killed. Not a std::exception, so no row catches it: the command removes its temporary
+// directory and ends by the same signal.
+struct SolverInterrupted {
+  int signal = 0;
+};
+
 struct ValidationRow {
   const Benchmark* benchmark = nullptr;
   Method method = Method::prd;

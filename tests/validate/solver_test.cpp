@@ -191,6 +191,29 @@ TEST(ValidateSolver, AThresholdRunsTheSolverAtEveryBisectionPoint) {
   EXPECT_NE(row(o.out, "phi").find("pass"), std::string::npos) << o.out;
 }
 
+// Stopped (SIGINT, as Ctrl-C sends it) while the solver runs: the solver, in a process group of
+// its own that a terminal's Ctrl-C does not reach, is killed, the temporary directory is removed,
+// and the command ends by the signal. Until 2026-11-27 both stayed behind.
+TEST(ValidateSolver, StoppedWhileTheSolverRunsLeavesNothingBehind) {
+  Scratch dir("validate-solver-stopped");
+  const std::filesystem::path pid_file = dir.path / "solver.pid";
+  // `timeout -s INT 2`: SIGINT to masonry after 2 s, while the solver sleeps; exit 124.
+  std::filesystem::create_directories(dir.path / "tmp2");
+  const int rc = test::run("TMPDIR=" + (dir.path / "tmp2").string() + " timeout -s INT 2 " + kExe + " validate --quiet --only block-topples --solver 'echo $$ > " +
+                           pid_file.string() + "; exec sleep 30' >/dev/null 2>&1");
+  EXPECT_NE(rc, 0);
+  ASSERT_TRUE(std::filesystem::exists(pid_file));
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path / "tmp2"));
+  const long pid = std::stol(test::read(pid_file.string()));
+  bool gone = false;
+  for (int k = 0; k < 50 && !gone; ++k) {  // killed and reaped before masonry ended; a moment's grace
+    gone = test::run("kill -0 " + std::to_string(pid) + " 2>/dev/null") != 0;
+    if (!gone) test::run("sleep 0.1");
+  }
+  EXPECT_TRUE(gone) << "the solver (pid " << pid << ") still runs";
+  if (!gone) test::run("kill -9 " + std::to_string(pid));
+}
+
 TEST(ValidateSolver, BadOptionsAreRefused) {
   Scratch dir("validate-solver-options");
   EXPECT_EQ(validate(dir, "--solver-name x").rc, 2);  // without --solver
