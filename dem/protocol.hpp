@@ -41,8 +41,8 @@ struct Limits {
   double creep_floor = 0;
   // Whether a hold calls a motion far out and speeding up a collapse before it has drifted
   // collapse_drift (over the cap's early windows and at the cap). Off while dem_run's follow
-  // stage holds a creep on to see where it ends: a hinge passing to another joint moves that far,
-  // speeding up, and then settles.
+  // stage holds a creep on to see where it ends (ke_collapse infinite then too): a hinge passing
+  // to another joint moves that far, speeding up, and then settles.
   bool read_early = true;
 };
 

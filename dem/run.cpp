@@ -293,7 +293,7 @@ bool confirm(Run& u, Failure& f) {
     return false;
   }
   f.attempt = a;
-  f.from = u.d_eq;  // the failed attempt now starts there (its runaway scale: follow())
+  f.from = u.d_eq;  // the failed attempt now starts there
   f.state = u.m.save();
   return true;
 }
@@ -306,19 +306,20 @@ bool confirm(Run& u, Failure& f) {
 // take longer than the cap: on a segmental arch whose joints are stiff against its weights
 // (density 2 kg/m^3) the hinge passing from joint 1 to joint 7 took 74 s from rest to settle, and
 // the run ended on a "limit point" at 0.106 m where the structure stands and goes on to 0.32 m
-// (dem/README.md, "Protocol", stage 5). So the creeping state is held on, a cap at a time, while it
-// speeds up: it ends in an equilibrium (another branch: recorded, and the increments go on from
+// (dem/README.md, "Protocol", stage 5). So the creeping state is held on, a hold at a time, while
+// it speeds up: it ends in an equilibrium (another branch: recorded, and the increments go on from
 // there, off the grid), in a collapse (located), or, once it no longer speeds up or after
 // kFollowHolds holds, the bracket's verdict stands. Whether the run goes on.
 bool follow(Run& u, Failure& f) {
   if (f.attempt.hold.end != HoldEnd::creep) return false;
   u.m.restore(f.state);
   u.m.set_support_parameter(f.d);
-  u.lim.ke_collapse = 10 * (u.ke_height_per_d * u.r.total_weight) * (f.d - f.from);  // the failed attempt's runaway scale
-  // Only a drift of collapse_drift from where the following began, or a runaway, calls a
-  // collapse here, not the reading of a slow collapse from a tenth of that: a hinge passing to
-  // another joint moves that far, speeding up, and then settles.
+  // Only a drift of collapse_drift from where the following began calls a collapse here: not the
+  // kinetic energy's rise over the hold's windows, nor the reading of a slow collapse from a
+  // tenth of that drift, since a hinge passing to another joint gains energy and moves that far,
+  // speeding up, before it lands (as the settling at d = 0, which only a drift ends).
   const std::vector<Vec2> here = dem::positions(u.m, u.c);
+  u.lim.ke_collapse = INFINITY;
   u.lim.read_early = false;
   HoldOutcome h = f.attempt.hold;
   long long cycles = 0;
