@@ -263,42 +263,17 @@ TEST(DemBracket, ALimitPointIsALocatedCollapse) {
 }
 
 // A limit point of one branch is not the capacity where the structure can pass to another. A
-// segmental arch (R 1.5 m, t 0.2 m, 120 degrees, 7 voussoirs, a 3 kN load on the second voussoir)
-// on a spreading support forms three hinges at once; near d = 0.05 m the one between the loaded
-// side's first two voussoirs closes while one at the other springing opens (a hinge passing to
-// another joint), a finite motion through a mechanism that starts from rest. With holds capped at 1 s
-// it took longer than a cap, every bracket trial past it crept, and the run ended on a "limit
-// point" at 0.054 m. Held on while it speeds up (dem_run's follow stage), the creep settles on
-// the other branch and the run goes on to the arch's collapse: where the default cap (30 s,
-// which outlasts the passing) puts it, and PRD (rigid blocks, another method) within 3%.
+// segmental arch (R 1.5 m, t 0.2 m, 120 degrees, 7 voussoirs, a 3 kN load on the second
+// voussoir; tests/dem/passing-hinge-arch.json, trial t3's R4 at its density 2000) on a spreading
+// support forms three hinges at once; near d = 0.05 m the one between the loaded side's first two
+// voussoirs closes while one at the other springing opens (a hinge passing to another joint), a
+// finite motion through a mechanism that starts from rest. With holds capped at 1 s it took
+// longer than a cap, every bracket trial past it crept, and the run ended on a "limit point" at
+// 0.054 m. Held on while it speeds up (dem_run's follow stage), the creep settles on the other
+// branch and the run goes on to the arch's collapse: where the default cap (30 s, which outlasts
+// the passing) puts it, and PRD (rigid blocks, another method) within 3%.
 TEST(DemBracket, AHingePassingToAnotherJointIsNotALimitPoint) {
-  CircularArch p;
-  p.radius = 1.5;
-  p.thickness = 0.2;
-  p.embrace = 120 * kDeg;
-  p.voussoirs = 7;
-  p.density = 2000;
-  p.step = 0.01;
-  p.max_steps = 60;
-  Case c = circular_arch(p);
-  c.dem.stiffness_reduction = 10;
-  c.dem.friction_angle = 35;
-  // Abutments 0.3 m wider than the springing joint and 0.4 m below its lower end.
-  for (Block& b : c.blocks) {
-    if (!b.support) continue;
-    const double side = b.id == "left" ? -1 : 1;
-    Vec2 inner(INFINITY, 0), outer(0, 0);  // the springing joint's lower and upper ends
-    for (const Vec2& v : b.vertices)
-      if (std::abs(v.x()) < std::abs(inner.x()) && v.y() > 0.6) inner = v;
-    for (const Vec2& v : b.vertices)
-      if (v.y() > outer.y()) outer = v;
-    const Vec2 far(outer.x() + side * 0.3, 0.3);
-    b.vertices = {inner, Vec2(inner.x(), 0.3), Vec2(far.x(), 0.3), Vec2(far.x(), outer.y()), outer};
-    if (side < 0) std::reverse(b.vertices.begin(), b.vertices.end());
-  }
-  const auto v1 = std::find_if(c.blocks.begin(), c.blocks.end(), [](const Block& b) { return b.id == "v1"; });
-  ASSERT_NE(v1, c.blocks.end());
-  c.loads.push_back({static_cast<int>(v1 - c.blocks.begin()), Vec2(0, -3000), Vec2(-0.8912, 1.3072)});
+  const Case c = load_case(std::string(MASONRY_SOURCE_DIR) + "/tests/dem/passing-hinge-arch.json");
   const RunResult full = dem_run(c, DemSettings::from_case(c));
   Case capped = c;
   capped.dem.hold_time = 1;
@@ -306,7 +281,7 @@ TEST(DemBracket, AHingePassingToAnotherJointIsNotALimitPoint) {
   ASSERT_EQ(full.status, RunStatus::collapse) << full.message;
   ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
   const double prd = prd_run(c, PrdSettings::from_case(c)).capacity;
-  EXPECT_NEAR(r.capacity, full.capacity, 2 * c.dem.bracket_fraction * p.step + 0.005 * full.capacity);
+  EXPECT_NEAR(r.capacity, full.capacity, 2 * c.dem.bracket_fraction * c.motion.step + 0.005 * full.capacity);
   EXPECT_NEAR(r.capacity, prd, 0.03 * prd);
 }
 
