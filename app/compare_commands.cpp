@@ -126,18 +126,18 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     std::vector<double> phis = o.frictions;
     if (phis.empty()) phis.push_back(c.dem.friction_angle);
     const Case dem_case = o.dem_step ? with_option(c, option_key(&Motion::step), *o.dem_step) : c;
+    std::vector<Case> dem_cases;  // one per friction angle
+    for (double phi : phis) dem_cases.push_back(with_option(dem_case, option_key(&DemOptions::friction_angle), phi));
     // The DEM's refusals before PRD runs (a large case's PRD can take minutes).
-    for (double phi : phis) {
-      const Case dc = with_option(dem_case, option_key(&DemOptions::friction_angle), phi);
-      dem_check(dc, DemSettings::from_case(dc));
-    }
+    for (const Case& dc : dem_cases) dem_check(dc, DemSettings::from_case(dc));
     progress(o.quiet, "compare: PRD on " + c.name + " ...\n");
     RunProgress prd_progress("compare: prd", c.motion.step * c.motion.max_steps, 1.0, {}, path_unit(c));
     results.push_back(run_case(c, Method::prd, {o.out_dir + "/prd", o.quiet ? std::function<void(const RunResult&)>() : std::ref(prd_progress)}));
     progress(o.quiet, "compare: PRD capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
     runs.push_back({prd_label(results.back().settings.value("hold_closed", nlohmann::json::array())), nullptr, "prd"});
-    for (double phi : phis) {
-      const Case dc = with_option(dem_case, option_key(&DemOptions::friction_angle), phi);
+    for (size_t k = 0; k < phis.size(); ++k) {
+      const double phi = phis[k];
+      const Case& dc = dem_cases[k];
       const std::string sub = phis.size() == 1 ? "dem" : "dem-phi" + num_text(phi);
       const std::string dir = o.out_dir + "/" + sub;
       progress(o.quiet, "compare: DEM (friction " + num_text(phi) + " deg) on " + c.name + " ...\n");
