@@ -3,8 +3,8 @@
 //   masonry validate [--quick] [--only NAME...] [--json FILE] [--markdown FILE] [--catalogue FILE]
 //                    [--solver 'COMMAND' [--solver-name NAME] [--solver-as prd|dem] [--solver-timeout S] [--solver-keep DIR]]
 // Exit code 0 when every row passes, 1 when one fails or errors, 2 for bad input (main()).
-#include <csignal>
 #include <cctype>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
