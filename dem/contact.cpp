@@ -274,8 +274,9 @@ bool collide_cached(const Vec2* va, const Vec2* na, int ca, const Vec2* vb, cons
   const int c1 = flip ? cb : ca, c2 = flip ? ca : cb, e1 = flip ? edge_b : edge_a;
 
   const Vec2 normal = n1[e1];
-  const ClipVertex incident[2] = {{v2[inc], 0}, {v2[(inc + 1) % c2], 1}};
-  const Vec2 v11 = v1[e1], v12 = v1[(e1 + 1) % c1];
+  // The next vertex without an integer division (two per touching pair per cycle were 7% of it).
+  const ClipVertex incident[2] = {{v2[inc], 0}, {v2[inc + 1 == c2 ? 0 : inc + 1], 1}};
+  const Vec2 v11 = v1[e1], v12 = v1[e1 + 1 == c1 ? 0 : e1 + 1];
   const Vec2 tangent = (v12 - v11).normalized();
   ClipVertex c1p[2], c2p[2];
   if (clip_segment(c1p, incident, -tangent, -tangent.dot(v11)) < 2) return false;

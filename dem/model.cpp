@@ -95,6 +95,7 @@ void DemModel::Impl::build_blocks() {
   ang.assign(nb, 0);
   spin.assign(nb, 0);
   torque.assign(nb, 0);
+  kin.assign(nb, 0);
   cs.assign(nb, 1.0);
   sn.assign(nb, 0.0);
   moved.assign(nb, 0.0);
@@ -458,7 +459,7 @@ void DemModel::Impl::contact_forces() {
 }
 
 void DemModel::Impl::integrate() {
-  double unb = 0, spd = 0, kin = 0, kpw = 0;
+  double ke_sum = 0;
   const double alpha = s.damping;
   const double half_margin = 0.5 * margin;
   bool due = false;
@@ -484,7 +485,6 @@ void DemModel::Impl::integrate() {
     } else {
       const Vec2 F = force[b];
       const double M = torque[b];
-      unb = std::max(unb, std::max(F.norm(), std::abs(M) / gyr[b]) / wref[b]);
       // Local (non-viscous) damping: a fraction of the unbalanced force opposes the motion.
       Vec2 Fd(F.x() - alpha * std::abs(F.x()) *
                           (vel[b].x() > 0   ? 1
@@ -499,13 +499,12 @@ void DemModel::Impl::integrate() {
       const double w_new = spin[b] + dt * Md / inertia[b];
       // Kinetic energy at the force time: mean of the two half-step velocities.
       const double kb = 0.5 * mass[b] * (0.5 * (v_new + vel[b])).squaredNorm() + 0.5 * inertia[b] * std::pow(0.5 * (w_new + spin[b]), 2);
-      kin += kb;
-      kpw = std::max(kpw, kb / wref[b]);
+      ke_sum += kb;
+      kin[b] = kb;
       vel[b] = v_new;
       spin[b] = w_new;
       pos[b] += dt * v_new;
       ang[b] += dt * w_new;
-      spd = std::max(spd, v_new.norm() + std::abs(w_new) * gyr[b]);
     }
     // The motion actually taken (differences of the stored doubles, so rounding is included).
     // Both are bounds, so |dx| + |dy| stands for the length: it is never shorter, and a looser
@@ -517,10 +516,8 @@ void DemModel::Impl::integrate() {
   }
   rebuild_due = due;
   d_now = d_target;
-  unbalanced = unb;
-  speed = spd;
-  ke = kin;
-  ke_per_weight = kpw;
+  ke = ke_sum;
+  unbalanced_known = speed_known = ke_per_weight_known = false;
 }
 
 DemModel::DemModel(const Case& c, const DemSettings& s) : p_(std::make_unique<Impl>(c, s)) { p_->setup(); }

@@ -83,9 +83,21 @@ struct DemModel::Impl {
   std::vector<Pair> pairs;
   std::vector<int> scratch;
 
-  // Diagnostics of the last cycle (the contact ones are summed from `pairs` on demand).
-  double unbalanced = INFINITY, speed = INFINITY, ke = 0;
-  double ke_per_weight = INFINITY;  // m: max over free blocks of KE_b / wref_b
+  // Diagnostics of the last cycle. The kinetic energy is summed by integrate(); the others are
+  // read from the cycle's arrays when asked for (observe.cpp), once per cycle at most, since
+  // most cycles read only some of them (a move the largest kinetic energy per weight, a hold the
+  // unbalanced force and, once that is small, the speed): force and torque stay as the cycle
+  // left them until the next, vel and spin until stop_free_blocks() (which reads the speed
+  // first), and kin holds each block's kinetic energy. The same expressions over the same
+  // blocks, so the same values to the bit as when integrate() computed them every cycle.
+  double ke = 0;
+  std::vector<double> kin;  // J, per free block, of the last cycle
+  mutable double unbalanced = INFINITY, speed = INFINITY;
+  mutable double ke_per_weight = INFINITY;  // m: max over free blocks of KE_b / wref_b
+  mutable bool unbalanced_known = true, speed_known = true, ke_per_weight_known = true;
+  double unbalanced_of_cycle() const;
+  double speed_of_cycle() const;
+  double ke_per_weight_of_cycle() const;
   double support_work = 0;          // J, done on the blocks by the moving supports since the start
 
   Impl(const Case& cs, const DemSettings& st) : origin(frame_origin(cs)), framed(shifted(cs, origin)), c(framed), s(st) {}

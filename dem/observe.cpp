@@ -21,11 +21,44 @@ double DemModel::time() const { return p_->time; }
 long long DemModel::cycles() const { return p_->cycles; }
 void DemModel::set_support_parameter(double d) { p_->d_target = d; }
 double DemModel::support_parameter() const { return p_->d_now; }
-double DemModel::unbalanced_ratio() const { return p_->unbalanced; }
-double DemModel::max_speed() const { return p_->speed; }
-double DemModel::max_kinetic_per_weight() const { return p_->ke_per_weight; }
+// The diagnostics of the last cycle, read from its arrays once asked for (model_impl.hpp).
+double DemModel::Impl::unbalanced_of_cycle() const {
+  if (!unbalanced_known) {
+    double unb = 0;
+    for (int b = 0; b < nb; ++b)
+      if (!support[b]) unb = std::max(unb, std::max(force[b].norm(), std::abs(torque[b]) / gyr[b]) / wref[b]);
+    unbalanced = unb;
+    unbalanced_known = true;
+  }
+  return unbalanced;
+}
+double DemModel::Impl::speed_of_cycle() const {
+  if (!speed_known) {
+    double spd = 0;
+    for (int b = 0; b < nb; ++b)
+      if (!support[b]) spd = std::max(spd, vel[b].norm() + std::abs(spin[b]) * gyr[b]);
+    speed = spd;
+    speed_known = true;
+  }
+  return speed;
+}
+double DemModel::Impl::ke_per_weight_of_cycle() const {
+  if (!ke_per_weight_known) {
+    double kpw = 0;
+    for (int b = 0; b < nb; ++b)
+      if (!support[b]) kpw = std::max(kpw, kin[b] / wref[b]);
+    ke_per_weight = kpw;
+    ke_per_weight_known = true;
+  }
+  return ke_per_weight;
+}
+
+double DemModel::unbalanced_ratio() const { return p_->unbalanced_of_cycle(); }
+double DemModel::max_speed() const { return p_->speed_of_cycle(); }
+double DemModel::max_kinetic_per_weight() const { return p_->ke_per_weight_of_cycle(); }
 void DemModel::stop_free_blocks() {
   Impl& m = *p_;
+  m.speed_of_cycle();  // the cycle's speed is the one before the stop
   for (int b = 0; b < m.nb; ++b)
     if (!m.support[b]) m.vel[b] = Vec2::Zero(), m.spin[b] = 0;
 }
@@ -112,8 +145,8 @@ DemSnapshot DemModel::save() const {
   d->d_now = m.d_now;
   d->time = m.time;
   d->support_work = m.support_work;
-  d->unbalanced = m.unbalanced;
-  d->speed = m.speed;
+  d->unbalanced = m.unbalanced_of_cycle();
+  d->speed = m.speed_of_cycle();
   d->ke = m.ke;
   return {d};
 }
@@ -137,6 +170,7 @@ void DemModel::restore(const DemSnapshot& snap) {
   m.support_work = d.support_work;
   m.unbalanced = d.unbalanced;
   m.speed = d.speed;
+  m.unbalanced_known = m.speed_known = true;
   m.ke = d.ke;
   // The world vertices and the cosines follow the restored poses (all blocks: a moving support
   // is back where it was too).
