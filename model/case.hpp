@@ -99,6 +99,12 @@ struct DemOptions {
   std::optional<double> ks;          // Pa/m; default G / h_block, G = E / (2 (1 + nu))
   double stiffness_reduction = 1.0;  // kn and ks are divided by this (the paper used 10)
   double damping = 0.8;              // local non-viscous damping coefficient alpha in [0, 1)
+  // Viscous damping at each contact point, as a fraction of the critical damping of the point's
+  // own oscillator (its normal or shear spring against the two blocks' effective mass at the
+  // point). Local damping opposes each block's own velocity, so it leaves alone a vibration of
+  // the joints riding on a block's steady motion (a move, a lag, a creep); this damps the joints'
+  // relative motion. 0: none (dem/README.md, "Contact damping").
+  double contact_damping = 0.0;
   // dt = timestep_factor * dt_crit, dt_crit = 2 / omega_bound (see DemModel::critical_dt);
   // factors above 1 are refused.
   double timestep_factor = 1.0;
