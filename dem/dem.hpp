@@ -5,6 +5,7 @@
 // friction angle alone is in degrees.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -30,6 +31,12 @@ struct DemSettings : DemOptions {
   bool allow_unstable_timestep = false;
   static DemSettings from_case(const Case& c);
 };
+
+// The factor contact damping (DemOptions::contact_damping, zeta) puts on the time step's bound:
+// with the damping force taken from the velocity of the half step before, an oscillator of
+// damping ratio zeta is stable for omega dt <= 2 (sqrt(1 + zeta^2) - zeta). 1 without it.
+inline double contact_damping_step_factor(double zeta) { return zeta > 0 ? std::sqrt(1 + zeta * zeta) - zeta : 1.0; }
+
 
 // One block's state for tests and diagnostics.
 struct DemBlockState {

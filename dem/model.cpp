@@ -212,14 +212,16 @@ void DemModel::Impl::set_time_step() {
     lam = std::max(lam, 2 * depth[b] * ((kn + ks) * P / mass[b] + std::max(kn, ks) * J / inertia[b]));
   }
   dt_crit = 2 / std::sqrt(lam);
-  // Viscous damping at the contacts lowers the central differences' stability limit: with the
-  // damping force taken from the velocity of the half step before, an oscillator with damping
-  // ratio zeta is stable for omega dt <= 2 (sqrt(1 + zeta^2) - zeta) (the amplification matrix's
-  // trace against 1 + its determinant, 1 - 2 zeta omega dt).
-  const double zeta = s.contact_damping;
-  if (zeta > 0) dt_crit *= std::sqrt(1 + zeta * zeta) - zeta;
+  // Viscous damping at the contacts lowers the central differences' stability limit, for each
+  // contact's own oscillator by contact_damping_step_factor (the amplification matrix's trace
+  // against 1 + its determinant, 1 - 2 zeta omega dt). The damping grows with the frequency, so
+  // the structure's fastest modes are damped more than zeta; the bound's own slack covers that
+  // (dem/README.md, "Contact damping").
+  if (s.contact_damping > 0) dt_crit *= contact_damping_step_factor(s.contact_damping);
   inv_mass.assign(nb, 0.0);
   inv_inertia.assign(nb, 0.0);
+  damp_force.assign(nb, Vec2::Zero());
+  damp_torque.assign(nb, 0.0);
   for (int b = 0; b < nb; ++b)
     if (!support[b]) inv_mass[b] = 1 / mass[b], inv_inertia[b] = 1 / inertia[b];
   if (!(s.timestep_factor > 0) || !std::isfinite(s.timestep_factor) || (s.timestep_factor > 1 && !s.allow_unstable_timestep)) {
@@ -396,6 +398,10 @@ void DemModel::Impl::body_forces() {
     force[b] = Vec2(0, -weight[b]);
     torque[b] = 0;
   }
+  if (s.contact_damping > 0) {
+    std::fill(damp_force.begin(), damp_force.end(), Vec2::Zero());
+    std::fill(damp_torque.begin(), damp_torque.end(), 0.0);
+  }
   for (size_t l = 0; l < load_block.size(); ++l) {
     const int b = load_block[l];
     const Vec2 r = rotate(load_r[l], cs[b], sn[b]);
@@ -452,8 +458,16 @@ void DemModel::Impl::contact_forces() {
       const double cap = fn * tan_phi;
       const bool slipping = std::abs(fs) > cap;
       if (slipping) fs = std::copysign(cap, fs);
-      Vec2 f = fn * n + fs * t;  // on B
-      if (s.contact_damping > 0) f = damped(fn, fs, slipping, n, t, vr, ra, rb, ba, bb, area);
+      const Vec2 f = fn * n + fs * t;  // on B
+      if (s.contact_damping > 0) {
+        // Kept apart from the springs' forces, so that local damping does not scale it
+        // (integrate()): the damper's force is zeta of critical as it stands.
+        const Vec2 g = damping_force(fn, fs, slipping, n, t, vr, ra, rb, ba, bb, area);
+        damp_force[bb] += g;
+        damp_torque[bb] += cross(rb, g);
+        damp_force[ba] -= g;
+        damp_torque[ba] -= cross(ra, g);
+      }
       force[bb] += f;
       torque[bb] += cross(rb, f);
       force[ba] -= f;
@@ -470,15 +484,16 @@ void DemModel::Impl::contact_forces() {
   }
 }
 
-// The contact force with viscous damping of the joint's relative motion (contact_damping): on
-// each direction, zeta times the critical damping of the point's own oscillator, its spring
+// The viscous damping of the joint's relative motion at a contact point (contact_damping), on B:
+// on each direction, zeta times the critical damping of the point's own oscillator, its spring
 // against the effective mass of the two blocks at the point along that direction (translation
 // and rotation about each centroid; a support's is infinite). The springs' history (fs) stays
-// elastic, so the damping acts only while the joint moves. The normal force does not pull; a
-// slipping point gets no shear damping (the friction already dissipates there), and the shear
-// stays within friction of the damped normal force.
-Vec2 DemModel::Impl::damped(double fn, double fs, bool slipping, const Vec2& n, const Vec2& t, const Vec2& vr, const Vec2& ra,
-                            const Vec2& rb, int ba, int bb, double area) const {
+// elastic, so the damping acts only while the joint moves. With it the normal force does not
+// pull (nor does a point without one carry shear); a slipping point gets no shear damping (the
+// friction already dissipates there); and the shear stays within friction of the damped normal
+// force. Returned as what it adds to the springs' force fn n + fs t.
+Vec2 DemModel::Impl::damping_force(double fn, double fs, bool slipping, const Vec2& n, const Vec2& t, const Vec2& vr, const Vec2& ra,
+                                   const Vec2& rb, int ba, int bb, double area) const {
   const double zeta = s.contact_damping;
   const auto inv_mass_along = [&](const Vec2& u) {
     const double la = cross(ra, u), lb = cross(rb, u);
@@ -487,14 +502,15 @@ Vec2 DemModel::Impl::damped(double fn, double fs, bool slipping, const Vec2& n, 
   const double fn_d = std::max(0.0, fn - 2 * zeta * std::sqrt(kn * area / inv_mass_along(n)) * vr.dot(n));
   double fs_d = fs;
   if (!slipping) fs_d -= 2 * zeta * std::sqrt(ks * area / inv_mass_along(t)) * vr.dot(t);
-  const double cap = fn_d * tan_phi;
+  const double cap = fn_d > 0 ? fn_d * tan_phi : 0.0;  // no normal force, no shear (at phi = 90 too: 0 x inf)
   if (std::abs(fs_d) > cap) fs_d = std::copysign(cap, fs_d);
-  return fn_d * n + fs_d * t;
+  return (fn_d - fn) * n + (fs_d - fs) * t;
 }
 
 void DemModel::Impl::integrate() {
   double ke_sum = 0;
   const double alpha = s.damping;
+  const bool damping_on = s.contact_damping > 0;
   const double half_margin = 0.5 * margin;
   bool due = false;
   for (int b = 0; b < nb; ++b) {
@@ -512,6 +528,7 @@ void DemModel::Impl::integrate() {
       place_support(b, d_target, x, th);
       // force[b] and torque[b] (about pos[b]) are what the blocks exert on the support.
       support_work -= force[b].dot(x - pos[b]) + torque[b] * (th - ang[b]);
+      if (damping_on) support_work -= damp_force[b].dot(x - pos[b]) + damp_torque[b] * (th - ang[b]);
       vel[b] = (x - pos[b]) / dt;
       spin[b] = (th - ang[b]) / dt;
       pos[b] = x;
@@ -529,8 +546,9 @@ void DemModel::Impl::integrate() {
                            : vel[b].y() < 0 ? -1
                                             : 0));
       const double Md = M - alpha * std::abs(M) * (spin[b] > 0 ? 1 : spin[b] < 0 ? -1 : 0);
-      const Vec2 v_new = vel[b] + dt * Fd / mass[b];
-      const double w_new = spin[b] + dt * Md / inertia[b];
+      // The contacts' dampers (contact_damping) act besides, not through, local damping.
+      const Vec2 v_new = damping_on ? Vec2(vel[b] + dt * (Fd + damp_force[b]) / mass[b]) : Vec2(vel[b] + dt * Fd / mass[b]);
+      const double w_new = damping_on ? spin[b] + dt * (Md + damp_torque[b]) / inertia[b] : spin[b] + dt * Md / inertia[b];
       // Kinetic energy at the force time: mean of the two half-step velocities.
       const double kb = 0.5 * mass[b] * (0.5 * (v_new + vel[b])).squaredNorm() + 0.5 * inertia[b] * std::pow(0.5 * (w_new + spin[b]), 2);
       ke_sum += kb;

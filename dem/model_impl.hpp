@@ -63,6 +63,9 @@ struct DemModel::Impl {
   std::vector<double> mass, inertia, weight, wref, gyr, rmax, depth;
   double mass_scale = 1.0;
   std::vector<double> inv_mass, inv_inertia;  // of the inertial ones; 0 for supports (contact damping)
+  // The contacts' dampers' force and moment on each block in the last cycle (contact damping only).
+  std::vector<Vec2> damp_force;
+  std::vector<double> damp_torque;
   std::vector<Vec2> c0, pos, vel, force;
   std::vector<double> ang, spin, torque;
   std::vector<double> cs, sn;  // cos and sin of ang, once per cycle for all pieces of the block
@@ -121,8 +124,8 @@ struct DemModel::Impl {
   void step();
   void body_forces();     // gravity and the dead loads
   void contact_forces();  // narrow phase and the joint law, on both blocks of each pair
-  Vec2 damped(double fn, double fs, bool slipping, const Vec2& n, const Vec2& t, const Vec2& vr, const Vec2& ra, const Vec2& rb,
-              int ba, int bb, double area) const;  // the contact force with contact_damping
+  Vec2 damping_force(double fn, double fs, bool slipping, const Vec2& n, const Vec2& t, const Vec2& vr, const Vec2& ra, const Vec2& rb,
+              int ba, int bb, double area) const;  // contact_damping's force at a point
   void integrate();       // supports to their prescribed pose; free blocks by damped central differences
 };
 

@@ -26,7 +26,12 @@ double DemModel::Impl::unbalanced_of_cycle() const {
   if (!unbalanced_known) {
     double unb = 0;
     for (int b = 0; b < nb; ++b)
-      if (!support[b]) unb = std::max(unb, std::max(force[b].norm(), std::abs(torque[b]) / gyr[b]) / wref[b]);
+      if (!support[b]) {
+        // With contact damping the dampers' force is part of what is out of balance.
+        const Vec2 F = s.contact_damping > 0 ? Vec2(force[b] + damp_force[b]) : force[b];
+        const double M = s.contact_damping > 0 ? torque[b] + damp_torque[b] : torque[b];
+        unb = std::max(unb, std::max(F.norm(), std::abs(M) / gyr[b]) / wref[b]);
+      }
     unbalanced = unb;
     unbalanced_known = true;
   }

@@ -39,8 +39,11 @@ constexpr int kFirstLook = 2;
 // factor and kept in model time at any other: the time step is a numerical setting, so halving it
 // must not make the supports speed up and brake twice as fast in model time (which loads the
 // structure more abruptly), nor make the hold's windows half as long. Returns how many default
-// cycles one cycle is: exactly 1 at the default.
-double default_cycles_per_cycle(const DemSettings& s) { return s.timestep_factor / DemOptions{}.timestep_factor; }
+// cycles one cycle is: exactly 1 at the default. Contact damping shortens the step too (by
+// contact_damping_step_factor), a numerical consequence, so its factor counts the same way.
+double default_cycles_per_cycle(const DemSettings& s) {
+  return s.timestep_factor * contact_damping_step_factor(s.contact_damping) / DemOptions{}.timestep_factor;
+}
 
 // A state that is no longer finite stops the run before anything is recorded (the sum of the
 // kinetic energies carries a NaN or infinity from any block, and from any free block's force or

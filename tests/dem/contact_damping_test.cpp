@@ -101,19 +101,30 @@ TEST(DemContactDamping, ABlockTopplesAtItsLimit) {
   EXPECT_NEAR(r.capacity, std::atan(b / h), c.dem.bracket_fraction * c.motion.step + 2 * resolution + 0.1 * M_PI / 180);
 }
 
-// The time step allows for the damping: the central differences with the damping force taken
-// from the half step before are stable for omega dt <= 2 (sqrt(1 + zeta^2) - zeta), so the bound
-// shrinks by that factor, and a run at the full step stays within its energy balance.
+// The time step allows for the damping of each contact: the central differences with the damping
+// force taken from the half step before are stable for omega dt <= 2 (sqrt(1 + zeta^2) - zeta)
+// (the amplification matrix's trace against 1 + its determinant), so the bound shrinks by that
+// factor. And two increments of a capacity run on joints stiff against the weights, where the
+// dampers work hardest, stay within the energy balance at the full step (dem_run throws where
+// they do not: a damper feeding energy in, by its sign or its scale, blows up). The bound's own
+// slack, not this factor, is what the structure's fastest modes need (dem/README.md, "Contact
+// damping": blow-up measured at 1.4-3.8 times the undamped bound), so no test can fail on the
+// factor alone.
 TEST(DemContactDamping, TheTimeStepAllowsForTheDamping) {
   Case c = test::tilt_case(0.2, 0.4, 35);
   const double plain = DemModel(c, DemSettings::from_case(c)).critical_dt();
   for (const double zeta : {0.1, 0.5, 0.9}) {
     c.dem.contact_damping = zeta;
-    DemModel m(c, DemSettings::from_case(c));
-    EXPECT_NEAR(m.critical_dt(), plain * (std::sqrt(1 + zeta * zeta) - zeta), 1e-12 * plain);
-    m.cycle(20000);
-    EXPECT_TRUE(std::isfinite(m.kinetic_energy()));
-    EXPECT_LE(m.kinetic_energy(), m.energy_input() + 1e-12);
+    EXPECT_NEAR(DemModel(c, DemSettings::from_case(c)).critical_dt(), plain * (std::sqrt(1 + zeta * zeta) - zeta), 1e-12 * plain);
+  }
+  Case light = load_case(std::string(MASONRY_SOURCE_DIR) + "/tests/dem/passing-hinge-arch.json");
+  for (Block& b : light.blocks) b.density *= 1e-3;
+  for (Load& l : light.loads) l.force *= 1e-3;
+  light.motion.max_steps = 2;
+  for (const double zeta : {0.3, 0.9}) {
+    DemSettings s = DemSettings::from_case(light);
+    s.contact_damping = zeta;
+    EXPECT_NO_THROW(dem_run(light, s)) << "zeta " << zeta;
   }
 }
 
