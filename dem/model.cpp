@@ -228,7 +228,8 @@ void DemModel::Impl::set_time_step() {
     std::ostringstream m;
     m << c.source << ": dem: field 'timestep_factor' = " << s.timestep_factor << " is outside (0, 1]: the time step would be "
       << s.timestep_factor * dt_crit << " s against a stability limit of " << dt_crit << " s (kn " << kn
-      << " Pa/m, lightest/stiffest block); refusing to run an unstable integration";
+      << " Pa/m, lightest/stiffest block" << (s.contact_damping > 0 ? ", contact damping " + std::to_string(s.contact_damping) : std::string())
+      << "); refusing to run an unstable integration";
     throw std::runtime_error(m.str());
   }
   dt = s.timestep_factor * dt_crit;

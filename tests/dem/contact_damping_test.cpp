@@ -108,8 +108,8 @@ TEST(DemContactDamping, ABlockTopplesAtItsLimit) {
 // dampers work hardest, stay within the energy balance at the full step (dem_run throws where
 // they do not: a damper feeding energy in, by its sign or its scale, blows up). The bound's own
 // slack, not this factor, is what the structure's fastest modes need (dem/README.md, "Contact
-// damping": blow-up measured at 1.4-3.8 times the undamped bound), so no test can fail on the
-// factor alone.
+// damping": a probe of the damping's first form blew up at 1.4-3.8 times the undamped bound), so
+// no run here can fail on the factor alone.
 TEST(DemContactDamping, TheTimeStepAllowsForTheDamping) {
   Case c = test::tilt_case(0.2, 0.4, 35);
   const double plain = DemModel(c, DemSettings::from_case(c)).critical_dt();
