@@ -37,7 +37,6 @@ struct DemSettings : DemOptions {
 // damping ratio zeta is stable for omega dt <= 2 (sqrt(1 + zeta^2) - zeta). 1 without it.
 inline double contact_damping_step_factor(double zeta) { return zeta > 0 ? std::sqrt(1 + zeta * zeta) - zeta : 1.0; }
 
-
 // One block's state for tests and diagnostics.
 struct DemBlockState {
   Vec2 position{0, 0};  // centroid, m

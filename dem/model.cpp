@@ -227,8 +227,8 @@ void DemModel::Impl::set_time_step() {
   if (!(s.timestep_factor > 0) || !std::isfinite(s.timestep_factor) || (s.timestep_factor > 1 && !s.allow_unstable_timestep)) {
     std::ostringstream m;
     m << c.source << ": dem: field 'timestep_factor' = " << s.timestep_factor << " is outside (0, 1]: the time step would be "
-      << s.timestep_factor * dt_crit << " s against a stability limit of " << dt_crit << " s (kn " << kn
-      << " Pa/m, lightest/stiffest block" << (s.contact_damping > 0 ? ", contact damping " + std::to_string(s.contact_damping) : std::string())
+      << s.timestep_factor * dt_crit << " s against a stability limit of " << dt_crit << " s (kn " << kn << " Pa/m, lightest/stiffest block"
+      << (s.contact_damping > 0 ? ", contact damping " + std::to_string(s.contact_damping) : std::string())
       << "); refusing to run an unstable integration";
     throw std::runtime_error(m.str());
   }
@@ -493,8 +493,8 @@ void DemModel::Impl::contact_forces() {
 // pull (nor does a point without one carry shear); a slipping point gets no shear damping (the
 // friction already dissipates there); and the shear stays within friction of the damped normal
 // force. Returned as what it adds to the springs' force fn n + fs t.
-Vec2 DemModel::Impl::damping_force(double fn, double fs, bool slipping, const Vec2& n, const Vec2& t, const Vec2& vr, const Vec2& ra,
-                                   const Vec2& rb, int ba, int bb, double area) const {
+Vec2 DemModel::Impl::damping_force(double fn, double fs, bool slipping, const Vec2& n, const Vec2& t, const Vec2& vr, const Vec2& ra, const Vec2& rb,
+                                   int ba, int bb, double area) const {
   const double zeta = s.contact_damping;
   const auto inv_mass_along = [&](const Vec2& u) {
     const double la = cross(ra, u), lb = cross(rb, u);

@@ -102,7 +102,7 @@ struct DemModel::Impl {
   double unbalanced_of_cycle() const;
   double speed_of_cycle() const;
   double ke_per_weight_of_cycle() const;
-  double support_work = 0;          // J, done on the blocks by the moving supports since the start
+  double support_work = 0;  // J, done on the blocks by the moving supports since the start
 
   Impl(const Case& cs, const DemSettings& st) : origin(frame_origin(cs)), framed(shifted(cs, origin)), c(framed), s(st) {}
   static Vec2 frame_origin(const Case& cs);
@@ -124,9 +124,10 @@ struct DemModel::Impl {
   void step();
   void body_forces();     // gravity and the dead loads
   void contact_forces();  // narrow phase and the joint law, on both blocks of each pair
-  Vec2 damping_force(double fn, double fs, bool slipping, const Vec2& n, const Vec2& t, const Vec2& vr, const Vec2& ra, const Vec2& rb,
-              int ba, int bb, double area) const;  // contact_damping's force at a point
   void integrate();       // supports to their prescribed pose; free blocks by damped central differences
+  // contact_damping's force at a contact point (contact_forces).
+  Vec2 damping_force(double fn, double fs, bool slipping, const Vec2& n, const Vec2& t, const Vec2& vr, const Vec2& ra, const Vec2& rb, int ba,
+                     int bb, double area) const;
 };
 
 }  // namespace masonry

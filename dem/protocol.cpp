@@ -210,7 +210,7 @@ HoldOutcome hold(DemModel& m, const Case& c, const DemSettings& s, const Limits&
     }
     if (segment > 0 && (in_cap + 1) % (2 * segment) == 0) {
       const long long j = (in_cap + 1) / (2 * segment);  // the window is 2j segments long, its middle at segment j
-      check_energy(m, lim.energy_floor, s);                 // a diverging integration also drifts: it is an error, never a collapse
+      check_energy(m, lim.energy_floor, s);              // a diverging integration also drifts: it is an error, never a collapse
       if (lim.read_early && j >= kFirstLook && j < kLookSegments / 2 && speeding_up_far_out(m, c, start, cap_start, looks[size_t(j)], lim)) {
         o.end = HoldEnd::collapse;
         break;

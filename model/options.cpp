@@ -619,7 +619,8 @@ std::vector<std::string> idle_options(const PrdOptions& p) {
 std::vector<std::string> idle_options(const DemOptions& d) {
   std::vector<std::string> out;
   if (d.move_time == 0 && d.ramp_fraction != DemOptions{}.ramp_fraction)
-    out.push_back(option_key(&DemOptions::ramp_fraction) + " (--ramp-fraction) has no effect without dem.move_time (--move-time): the servo paces the moves");
+    out.push_back(option_key(&DemOptions::ramp_fraction) +
+                  " (--ramp-fraction) has no effect without dem.move_time (--move-time): the servo paces the moves");
   return out;
 }
 
