@@ -102,6 +102,9 @@ struct DemModel::Impl {
   double unbalanced_of_cycle() const;
   double speed_of_cycle() const;
   double ke_per_weight_of_cycle() const;
+  // The largest over the free blocks of value(b), into `cached` unless `known` (observe.cpp).
+  template <class Value>
+  double once_per_cycle(bool& known, double& cached, Value value) const;
   double support_work = 0;  // J, done on the blocks by the moving supports since the start
 
   Impl(const Case& cs, const DemSettings& st) : origin(frame_origin(cs)), framed(shifted(cs, origin)), c(framed), s(st) {}

@@ -21,41 +21,35 @@ double DemModel::time() const { return p_->time; }
 long long DemModel::cycles() const { return p_->cycles; }
 void DemModel::set_support_parameter(double d) { p_->d_target = d; }
 double DemModel::support_parameter() const { return p_->d_now; }
-// The diagnostics of the last cycle, read from its arrays once asked for (model_impl.hpp).
-double DemModel::Impl::unbalanced_of_cycle() const {
-  if (!unbalanced_known) {
-    double unb = 0;
+// The diagnostics of the last cycle, read from its arrays once asked for (model_impl.hpp): each
+// the largest over the free blocks of a block's value, computed at most once per cycle. (The
+// same expressions and order as when integrate() computed them every cycle.)
+template <class Value>
+double DemModel::Impl::once_per_cycle(bool& known, double& cached, Value value) const {
+  if (!known) {
+    double largest = 0;
     for (int b = 0; b < nb; ++b)
-      if (!support[b]) {
-        // With contact damping the dampers' force is part of what is out of balance.
-        const Vec2 F = s.contact_damping > 0 ? Vec2(force[b] + damp_force[b]) : force[b];
-        const double M = s.contact_damping > 0 ? torque[b] + damp_torque[b] : torque[b];
-        unb = std::max(unb, std::max(F.norm(), std::abs(M) / gyr[b]) / wref[b]);
-      }
-    unbalanced = unb;
-    unbalanced_known = true;
+      if (!support[b]) largest = std::max(largest, value(b));
+    cached = largest;
+    known = true;
   }
-  return unbalanced;
+  return cached;
+}
+
+double DemModel::Impl::unbalanced_of_cycle() const {
+  // With contact damping the dampers' force is part of what is out of balance.
+  const bool dampers = s.contact_damping > 0;
+  return once_per_cycle(unbalanced_known, unbalanced, [&](int b) {
+    const Vec2 F = dampers ? Vec2(force[b] + damp_force[b]) : force[b];
+    const double M = dampers ? torque[b] + damp_torque[b] : torque[b];
+    return std::max(F.norm(), std::abs(M) / gyr[b]) / wref[b];
+  });
 }
 double DemModel::Impl::speed_of_cycle() const {
-  if (!speed_known) {
-    double spd = 0;
-    for (int b = 0; b < nb; ++b)
-      if (!support[b]) spd = std::max(spd, vel[b].norm() + std::abs(spin[b]) * gyr[b]);
-    speed = spd;
-    speed_known = true;
-  }
-  return speed;
+  return once_per_cycle(speed_known, speed, [&](int b) { return vel[b].norm() + std::abs(spin[b]) * gyr[b]; });
 }
 double DemModel::Impl::ke_per_weight_of_cycle() const {
-  if (!ke_per_weight_known) {
-    double kpw = 0;
-    for (int b = 0; b < nb; ++b)
-      if (!support[b]) kpw = std::max(kpw, kin[b] / wref[b]);
-    ke_per_weight = kpw;
-    ke_per_weight_known = true;
-  }
-  return ke_per_weight;
+  return once_per_cycle(ke_per_weight_known, ke_per_weight, [&](int b) { return kin[b] / wref[b]; });
 }
 
 double DemModel::unbalanced_ratio() const { return p_->unbalanced_of_cycle(); }
