@@ -217,7 +217,7 @@ void DemModel::Impl::set_time_step() {
   // against 1 + its determinant, 1 - 2 zeta omega dt). The damping grows with the frequency, so
   // the structure's fastest modes are damped more than zeta; the bound's own slack covers that
   // (dem/README.md, "Contact damping").
-  if (s.contact_damping > 0) dt_crit *= contact_damping_step_factor(s.contact_damping);
+  dt_crit *= contact_damping_step_factor(s.contact_damping);  // exactly 1 without it
   inv_mass.assign(nb, 0.0);
   inv_inertia.assign(nb, 0.0);
   damp_force.assign(nb, Vec2::Zero());
