@@ -1,7 +1,8 @@
 // The DEM's convergence study: the same case at the default settings and at settings that must
 // not change a quasi-static answer (loading twice as slow, half the increment, another damping,
-// half the time step, joints three times stiffer and softer, more friction). Running them is
-// runs/parallel.hpp's business, reading the spread compare/convergence.hpp's.
+// half the time step, joints three times stiffer and softer, the holds' damping, contact damping,
+// more friction). Running them is runs/parallel.hpp's business, reading the spread
+// compare/convergence.hpp's.
 #pragma once
 
 #include <string>

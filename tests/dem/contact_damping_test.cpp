@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dem/dem.hpp"
+#include "dem/variants.hpp"
 #include "model/interfaces.hpp"
 #include "model/io.hpp"
 #include "util.hpp"
@@ -125,6 +126,28 @@ TEST(DemContactDamping, TheTimeStepAllowsForTheDamping) {
     DemSettings s = DemSettings::from_case(light);
     s.contact_damping = zeta;
     EXPECT_NO_THROW(dem_run(light, s)) << "zeta " << zeta;
+  }
+}
+
+// The convergence study varies the damping of the joints as a setting that must not matter: on
+// where the case has none, off where it has some, nothing else changed.
+TEST(DemContactDamping, TheConvergenceStudyVariesIt) {
+  for (const double zeta : {0.0, 0.2}) {
+    DemSettings base;
+    base.contact_damping = zeta;
+    int found = 0;
+    for (const DemVariant& v : convergence_variants(base)) {
+      if (v.name != "contact-damping") {
+        EXPECT_EQ(v.settings.contact_damping, zeta) << v.name;
+        continue;
+      }
+      ++found;
+      EXPECT_EQ(v.settings.contact_damping, zeta > 0 ? 0.0 : 0.3);
+      EXPECT_EQ(v.settings.damping, base.damping);
+      EXPECT_EQ(v.settings.stiffness_reduction, base.stiffness_reduction);
+      EXPECT_EQ(v.settings.kinetic_ratio, base.kinetic_ratio);
+    }
+    EXPECT_EQ(found, 1);
   }
 }
 
