@@ -2,7 +2,6 @@
 #include <cctype>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "compare/compare.hpp"
 #include "model/interfaces.hpp"
@@ -42,17 +41,33 @@ std::string hinges_at_collapse(const Case& c, const RunResult& r) {
   return s;
 }
 
-std::string members_of(const std::string& hinges) {
+std::vector<std::string> hinge_labels(const std::string& hinges) {
+  // Each label is BLOCK/BLOCK:A, :B or :open, the labels joined by spaces. Ids may hold spaces
+  // but never ':' (model/case.cpp, id_fault), so a label ends at the word after its colon.
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start < hinges.size()) {
+    while (start < hinges.size() && hinges[start] == ' ') ++start;
+    if (start >= hinges.size()) break;
+    const size_t colon = hinges.find(':', start);
+    size_t end = colon == std::string::npos ? hinges.size() : hinges.find(' ', colon);
+    if (end == std::string::npos) end = hinges.size();
+    out.push_back(hinges.substr(start, end - start));
+    start = end;
+  }
+  return out;
+}
+
+std::vector<std::string> members_of(const std::string& hinges) {
   const auto member = [](std::string id) {
     size_t end = id.size();
     while (end > 0 && std::isdigit(static_cast<unsigned char>(id[end - 1]))) --end;
     if (end == id.size() || end == 0) return id;  // no number, or nothing but one
-    if (id[end - 1] == '-' && end > 1) --end;
+    if ((id[end - 1] == '-' || id[end - 1] == '_' || id[end - 1] == ' ') && end > 1) --end;  // "nave-06", "pier 2"
     return id.substr(0, end);
   };
   std::set<std::string> out;
-  std::istringstream in(hinges);
-  for (std::string h; in >> h;) {
+  for (const std::string& h : hinge_labels(hinges)) {
     const size_t slash = h.find('/'), colon = h.rfind(':');
     if (slash == std::string::npos || colon == std::string::npos || colon < slash) {
       out.insert(h);
@@ -61,8 +76,12 @@ std::string members_of(const std::string& hinges) {
     const std::string a = member(h.substr(0, slash)), b = member(h.substr(slash + 1, colon - slash - 1));
     out.insert(a == b ? a : a + "/" + b);
   }
+  return {out.begin(), out.end()};
+}
+
+std::string join_members(const std::vector<std::string>& members) {
   std::string s;
-  for (const std::string& m : out) s += (s.empty() ? "" : " ") + m;
+  for (const std::string& m : members) s += (s.empty() ? "" : ", ") + m;
   return s;
 }
 

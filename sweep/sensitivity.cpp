@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
+#include <type_traits>
 
 #include "model/version.hpp"
 #include "sweep/runner.hpp"
@@ -263,27 +263,33 @@ MethodSensitivity method_sensitivity(const SweepPlan& p, const SweepTable& t, Me
         m.nearest.push_back(best);
       }
   }
-  std::map<std::string, std::vector<double>> by_members;
+  // Grouped by the members as lists (ids may hold spaces, so no joined string is a key).
+  std::map<std::vector<std::string>, std::vector<double>> member_sets;
   for (const auto& [hinges, c] : by_hinges) {
-    std::vector<double>& g = by_members[members_of(hinges)];
+    std::vector<double>& g = member_sets[members_of(hinges)];
     g.insert(g.end(), c.begin(), c.end());
   }
-  const auto shares = [&](const std::map<std::string, std::vector<double>>& groups) {
+  std::map<std::string, std::vector<double>> by_member;
+  for (const auto& [members, c] : member_sets) {
+    for (const std::string& one : members) {
+      std::vector<double>& h = by_member[one];
+      h.insert(h.end(), c.begin(), c.end());
+    }
+  }
+  const auto name = [](const auto& key) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(key)>, std::string>)
+      return key;
+    else
+      return join_members(key);
+  };
+  const auto shares = [&](const auto& groups) {
     std::vector<MechanismShare> out;
-    for (const auto& [key, c] : groups) out.push_back({key, static_cast<int>(c.size()), double(c.size()) / double(m.located), median(c)});
+    for (const auto& [key, c] : groups) out.push_back({name(key), static_cast<int>(c.size()), double(c.size()) / double(m.located), median(c)});
     std::stable_sort(out.begin(), out.end(), [](const MechanismShare& a, const MechanismShare& b) { return a.count > b.count; });
     return out;
   };
-  std::map<std::string, std::vector<double>> by_member;
-  for (const auto& [members, c] : by_members) {
-    std::istringstream in(members);
-    for (std::string one; in >> one;) {
-      std::vector<double>& g = by_member[one];
-      g.insert(g.end(), c.begin(), c.end());
-    }
-  }
   m.mechanisms = shares(by_hinges);
-  m.members = shares(by_members);
+  m.members = shares(member_sets);
   m.member_frequency = shares(by_member);
   for (size_t k = 0; k < p.keys.size(); ++k) {
     ParameterSensitivity ps;

@@ -181,11 +181,15 @@ SweepRow execute_run(const SweepPlan& p, const SweepRun& r, bool keep = false);
 // mechanism where it located one, else the hinges of the last equilibrium (a DEM's measured
 // beyond its settled gaps, as compare/ does).
 std::string hinges_at_collapse(const Case& c, const RunResult& r);
-// The members a set of hinges lies in, "nave R-pier/R-aisle ...": each hinge's two block ids
+// The labels of hinges_at_collapse's string, one per hinge (ids may hold spaces, never ':').
+std::vector<std::string> hinge_labels(const std::string& hinges);
+// The members a set of hinges lies in, {"R-pier/R-aisle", "nave"}: each hinge's two block ids
 // without their trailing number (a voussoir's or a course's), one name where both are the same
 // member, each member or pair once, sorted. Coarser than the hinges themselves: geometry that
 // moves a hinge by a voussoir, or renumbers the courses, keeps its members.
-std::string members_of(const std::string& hinges);
+std::vector<std::string> members_of(const std::string& hinges);
+// Members for a table: "R-pier/R-aisle, nave".
+std::string join_members(const std::vector<std::string>& members);
 
 // (cap_dem - cap_prd) / cap_prd of a DEM row against its PRD row; nullopt when either is
 // missing or failed, or the PRD capacity is 0.

@@ -232,5 +232,16 @@ TEST(Sensitivity, APrdOnlySweepOverDemOptionsSaysSo) {
   EXPECT_EQ(read_json(d.path / "out" / "sweep.json")["runs"].size(), 1u);
 }
 
+// Block ids may hold spaces (never '/' or ':'), so a set of hinges is read label by label, not
+// word by word, and grouped by its members as lists.
+TEST(Sensitivity, HingesOfIdsWithSpacesKeepTheirMembers) {
+  const std::string hinges = "pier L0/pier L1:A arch 3/arch 4:open nave-06/nave-07:B";
+  EXPECT_EQ(hinge_labels(hinges), (std::vector<std::string>{"pier L0/pier L1:A", "arch 3/arch 4:open", "nave-06/nave-07:B"}));
+  EXPECT_EQ(members_of(hinges), (std::vector<std::string>{"arch", "nave", "pier L"}));
+  EXPECT_EQ(join_members(members_of(hinges)), "arch, nave, pier L");
+  EXPECT_EQ(members_of("L pier 2/aisle 1:B"), (std::vector<std::string>{"L pier/aisle"}));
+  EXPECT_TRUE(hinge_labels("").empty());
+}
+
 }  // namespace
 }  // namespace masonry
