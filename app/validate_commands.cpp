@@ -3,7 +3,11 @@
 //   masonry validate [--quick] [--only NAME...] [--json FILE] [--markdown FILE] [--catalogue FILE]
 //                    [--solver 'COMMAND' [--solver-name NAME] [--solver-as prd|dem] [--solver-timeout S] [--solver-keep DIR]]
 // Exit code 0 when every row passes, 1 when one fails or errors, 2 for bad input (main()).
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cctype>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -62,6 +66,36 @@ struct RemovedAtExit {
   ~RemovedAtExit() { remove(); }
 };
 
+// A process that removes the temporary directory once this one has ended, however it ends:
+// stopped by Ctrl-C during masonry's own work between the solver's runs (the solver's wait
+// catches the signal and cleans up itself, nothing else does) or killed, no destructor runs.
+// It waits on a pipe whose only writer is this process (close-on-exec, so no solver holds it),
+// ignores the terminal's signals (Ctrl-C reaches the whole process group), and holds none of
+// the caller's streams. Without it (no pipe or fork) the ordinary ends still remove the directory.
+void remove_when_this_process_ends(const std::string& dir) {
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) return;
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    return;
+  }
+  if (pid == 0) {
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) std::signal(sig, SIG_IGN);
+    close(fds[1]);
+    if (const int null = open("/dev/null", O_RDWR); null >= 0)
+      for (const int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO}) dup2(null, fd);
+    char ch;
+    while (read(fds[0], &ch, 1) < 0 && errno == EINTR) {
+    }
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+    _exit(0);
+  }
+  close(fds[0]);  // the write end stays open until this process ends
+}
+
 std::string command_line(const Opts& o) {
   std::string s = "masonry validate";
   if (o.quick) s += " --quick";
@@ -116,7 +150,10 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                      solver->timeout_s = o->solver_timeout;
                      solver->workdir = solver_workdir(o->solver_keep);
                      solver->kept = !o->solver_keep.empty();
-                     if (!solver->kept) temporary.dir = solver->workdir;
+                     if (!solver->kept) {
+                       temporary.dir = solver->workdir;
+                       remove_when_this_process_ends(solver->workdir);
+                     }
                    }
                    std::vector<ValidationRow> rows;
                    RunCache cache;

@@ -214,6 +214,29 @@ TEST(ValidateSolver, StoppedWhileTheSolverRunsLeavesNothingBehind) {
   if (!gone) test::run("kill -9 " + std::to_string(pid));
 }
 
+// Killed outright (no handler runs, as when Ctrl-C lands while masonry's own work runs between
+// the solver's runs and the default action ends it): the temporary directory is still removed,
+// once masonry has ended.
+TEST(ValidateSolver, KilledLeavesNoTemporaryDirectory) {
+  Scratch dir("validate-solver-killed");
+  const std::filesystem::path pid_file = dir.path / "solver.pid", tmp = dir.path / "tmp3";
+  std::filesystem::create_directories(tmp);
+  // SIGKILL to masonry alone after 2 s, while the solver sleeps (timeout(1) would signal its
+  // whole process group).
+  const int rc = test::run("TMPDIR=" + tmp.string() + " " + kExe + " validate --quiet --only block-topples --solver 'echo $$ > " + pid_file.string() +
+                           "; exec sleep 30' >/dev/null 2>&1 & p=$!; sleep 2; kill -9 $p; wait $p");
+  EXPECT_NE(rc, 0);
+  ASSERT_TRUE(std::filesystem::exists(pid_file));
+  // A killed masonry cannot kill its solver: this test does.
+  test::run("kill -9 " + test::read(pid_file.string()) + " 2>/dev/null");
+  bool empty = false;
+  for (int k = 0; k < 50 && !empty; ++k) {  // removed by another process once masonry has gone
+    empty = std::filesystem::is_empty(tmp);
+    if (!empty) test::run("sleep 0.1");
+  }
+  EXPECT_TRUE(empty) << "the temporary directory stayed under " << tmp;
+}
+
 TEST(ValidateSolver, BadOptionsAreRefused) {
   Scratch dir("validate-solver-options");
   EXPECT_EQ(validate(dir, "--solver-name x").rc, 2);  // without --solver
