@@ -29,12 +29,19 @@ std::string hinges_at_collapse(const Case& c, const RunResult& r) {
     }
   }
   if (labels.empty()) {
-    // The hinges of the last equilibrium (a PRD whose mechanism LP found none, a DEM); a DEM's
-    // beyond the gaps it settled with (compare/'s rule: elastic redistribution opens gaps that
-    // wide anywhere).
+    // A DEM that collapsed: the hinges of the state its failed hold was called a collapse in
+    // (compare/ reads its collapse mechanism there too). At its last equilibrium a toppling
+    // block's heel may still be within the elastic gaps, and the run grouped with the sliding
+    // ones (a stack on a tilting slab, friction 17.5 and 20 degrees: "none" beside the toppling
+    // runs at 12.5 and 15). Otherwise the hinges of the last equilibrium (a PRD whose mechanism LP
+    // found none, a DEM without a collapse). A DEM's are measured beyond the gaps it settled
+    // with (compare/'s rule: elastic redistribution opens gaps that wide anywhere).
+    const bool dem = known_method(r) == Method::dem;
+    const std::optional<StepRecord> failed = dem ? collapse_state(r) : std::nullopt;
     const std::vector<const StepRecord*> stable = stable_records(r);
-    if (stable.empty()) return "";
-    for (const Hinge& h : hinges_of(c, r, *stable.back(), known_method(r) == Method::dem ? settled_gap(r) : 0.0)) labels.push_back(h.label);
+    const StepRecord* at = failed ? &*failed : stable.empty() ? nullptr : stable.back();
+    if (!at) return "";
+    for (const Hinge& h : hinges_of(c, r, *at, dem ? settled_gap(r) : 0.0)) labels.push_back(h.label);
   }
   std::string s;
   for (const std::string& l : labels) s += (s.empty() ? "" : " ") + l;

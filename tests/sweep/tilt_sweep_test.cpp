@@ -55,7 +55,11 @@ TEST(TiltSweep, SlidesBelowAtanBOverHAndTopplesAbove) {
     EXPECT_LE(tilt, expected) << "phi " << phi / kDeg;
     EXPECT_GT(tilt, expected - blk.increment) << "phi " << phi / kDeg;
     (std::tan(phi) < blk.b / blk.h ? sliding : toppling)++;
+    // Grouped by mechanism: a sliding block opens no joint; a toppling one turns about its
+    // downhill corner, PRD's hinge (its collapse mechanism's).
+    EXPECT_EQ(t[i]->hinges, std::tan(phi) < blk.b / blk.h ? std::string() : t[0]->hinges) << "phi " << phi / kDeg;
   }
+  EXPECT_FALSE(t[0]->hinges.empty());
   EXPECT_EQ(sliding, 3);  // 12.5, 17.5, 22.5
   EXPECT_EQ(toppling, 3);
 
