@@ -159,10 +159,11 @@ namespace {
 // differ between runs), with their gaps.
 std::map<std::string, double> wide_open(const Case& c, const RunResult& r, const StepRecord& s, double min_gap) {
   std::map<std::string, double> out;
+  const std::vector<int> nth = pair_ordinals(r.joints);
   for (const OpenCorner& o : s.open_corners) {
     if (!(o.gap > min_gap) || o.joint < 0 || o.joint >= int(r.joints.size())) continue;
     const JointInfo& ji = r.joints[o.joint];
-    out[corner_name(c, ji.i, ji.j, o.corner)] = o.gap;
+    out[corner_name(c, ji.i, ji.j, o.corner, nth[size_t(o.joint)])] = o.gap;
   }
   return out;
 }
@@ -292,6 +293,7 @@ std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord
     open[o.joint].push_back({o.corner, opening});
   }
   std::vector<Hinge> out;
+  const std::vector<int> nth = open.empty() ? std::vector<int>() : pair_ordinals(r.joints);
   for (const auto& [joint, ends] : open) {
     if (ends.size() != 1 || joint < 0 || joint >= int(r.joints.size())) continue;
     const JointInfo& ji = r.joints[joint];
@@ -301,7 +303,7 @@ std::vector<Hinge> hinges_of(const Case& c, const RunResult& r, const StepRecord
     h.j = ji.j;
     h.corner = 1 - ends[0].first;
     h.point = h.corner == 0 ? ji.a : ji.b;
-    h.label = corner_name(c, ji.i, ji.j, h.corner);
+    h.label = corner_name(c, ji.i, ji.j, h.corner, nth[size_t(joint)]);
     h.opening = ends[0].second;
     out.push_back(h);
   }

@@ -65,9 +65,15 @@ bool edge_pair(const Edge& e, const Edge& f, double tol, Interface& out) {
 
 double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj) { return std::min((pj - pi).dot(ni), (pi - pj).dot(nj)); }
 
-std::string corner_name(const Case& c, int i, int j, int corner) {
+std::string corner_letter(int corner, int nth) {
+  const int k = 2 * nth + (corner == 0 ? 0 : 1);
+  if (nth >= 0 && k < 26) return std::string(1, char('A' + k));
+  return std::string(corner == 0 ? "A" : "B") + std::to_string(nth + 1);
+}
+
+std::string corner_name(const Case& c, int i, int j, int corner, int nth) {
   const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
-  return id(i) + "/" + id(j) + (corner == 0 ? ":A" : ":B");
+  return id(i) + "/" + id(j) + ":" + corner_letter(corner, nth);
 }
 
 std::vector<Interface> detect_interfaces(const Case& c, double tol) {

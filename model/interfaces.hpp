@@ -2,7 +2,10 @@
 // Found once, in the initial configuration; both methods name joints by them.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "model/case.hpp"
@@ -24,8 +27,18 @@ struct Interface {
 std::vector<Interface> detect_interfaces(const Case& c, double tol);
 
 // A joint corner's name, "BLOCK/BLOCK:A" (the joint's blocks i and j, corner 0 = A, 1 = B; an
-// index outside the case reads "?"), as reports print it and `masonry check --hold` takes it.
-std::string corner_name(const Case& c, int i, int j, int corner);
+// index outside the case reads "?"), as reports print it and `--hold` takes it. Two blocks may
+// meet at more than one joint (a block seated in a support's notch touches its floor and both
+// sides): the joint that is `nth` between them (0 the first, in the joints' order) has the
+// corners C and D, E and F, and so on (past Z: A14, B14, the joint's number after the letter).
+std::string corner_name(const Case& c, int i, int j, int corner, int nth = 0);
+// The letters corner_name gives corner `corner` (0 or 1) of the `nth` joint between two blocks.
+std::string corner_letter(int corner, int nth);
+
+// For each joint of `joints` (anything with block indices i and j), how many joints before it
+// join the same two blocks: corner_name's `nth`.
+template <class Joint>
+std::vector<int> pair_ordinals(const std::vector<Joint>& joints);
 
 // The normal gap at one joint corner, m, from the two blocks' copies of it (world frame: pi on
 // block i, pj on block j) and their outward joint normals (ni of i, nj of j): the smaller of the
@@ -44,5 +57,16 @@ double corner_gap(const Vec2& pi, const Vec2& ni, const Vec2& pj, const Vec2& nj
 bool point_in_polygon(const Vec2& p, const std::vector<Vec2>& poly);
 double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b);
 double distance_to_boundary(const Vec2& p, const std::vector<Vec2>& poly);
+
+template <class Joint>
+std::vector<int> pair_ordinals(const std::vector<Joint>& joints) {
+  std::vector<int> out(joints.size(), 0);
+  std::unordered_map<std::uint64_t, int> seen;
+  for (size_t k = 0; k < joints.size(); ++k) {
+    const auto lo = std::uint32_t(std::min(joints[k].i, joints[k].j)), hi = std::uint32_t(std::max(joints[k].i, joints[k].j));
+    out[k] = seen[(std::uint64_t(lo) << 32) | hi]++;
+  }
+  return out;
+}
 
 }  // namespace masonry

@@ -25,10 +25,14 @@ constexpr double kMaxModelTime = 1e4;        // s of DEM model time
 constexpr double kMaxSteps = 1e8;            // steps of one run: 1e8 LPs or DEM increments is days of work
 
 // A joint corner as results name it: "BLOCK/BLOCK:A" or ":B".
+// BLOCK/BLOCK:A, as corner_name writes it: a letter A to Z (C and on for a further joint between
+// the same blocks), or A or B and the joint's number past Z.
 bool is_joint_corner(const std::string& s) {
-  const size_t slash = s.find('/');
-  return slash != std::string::npos && slash > 0 && s.size() > slash + 3 &&
-         (s.compare(s.size() - 2, 2, ":A") == 0 || s.compare(s.size() - 2, 2, ":B") == 0);
+  const size_t slash = s.find('/'), colon = s.rfind(':');
+  if (slash == std::string::npos || slash == 0 || colon == std::string::npos || colon < slash + 2 || colon + 1 >= s.size()) return false;
+  const std::string x = s.substr(colon + 1);
+  if (x.size() == 1) return x[0] >= 'A' && x[0] <= 'Z';
+  return (x[0] == 'A' || x[0] == 'B') && x.find_first_not_of("0123456789", 1) == std::string::npos;
 }
 
 const Option<Case> kCaseRows[] = {
@@ -95,7 +99,7 @@ const Option<PrdOptions> kPrdRows[] = {
      .flag = "--sliding"},
     {.name = "hold_closed",
      .member = &PrdOptions::hold_closed,
-     .note = "a joint corner BLOCK/BLOCK:A or :B, as results name them",
+     .note = "a joint corner BLOCK/BLOCK:A or :B (:C, :D and on for further joints between the same blocks), as results name them",
      .word_ok = is_joint_corner,
      .help = "Joint corners kept closed over the whole run, each step recording their forces (held_corners, N, negative: a "
              "tension): the next mechanism's capacity where two are near-tied (dem/README.md, \"The branch X\")",

@@ -205,26 +205,30 @@ void start_from(Model& m, const PrdStart& start) {
 }
 
 void hold_corners(Model& m, const std::vector<std::string>& names) {
+  if (names.empty()) return;
+  const std::vector<int> nth = pair_ordinals(m.joints);
   for (const std::string& want : names) {
-    // A name is one corner's: the case loader refuses ids holding '/' or ':' (id_fault), which
-    // could give two joints one name.
+    // A name is one corner's: the case loader refuses ids holding '/' or ':' (id_fault), and
+    // joints between the same two blocks take further corner letters.
     bool found = false;
     for (size_t e = 0; e < m.ends.size(); ++e) {
       const Interface& jt = m.joints[m.ends[e].joint];
-      if (corner_name(*m.c, jt.i, jt.j, m.ends[e].corner) != want) continue;
+      if (corner_name(*m.c, jt.i, jt.j, m.ends[e].corner, nth[size_t(m.ends[e].joint)]) != want) continue;
       m.ends[e].held = found = true;
     }
     if (!found)
       throw std::runtime_error(m.c->source + ": prd: field 'hold_closed': no joint corner '" + printable(want) +
-                               "' (names as BLOCK/BLOCK:A, the blocks in the results' order)");
+                               "' (names as BLOCK/BLOCK:A, the blocks in the results' order; C, D and on for a second joint between them)");
   }
 }
 
 void record_held(const Model& m, StepRecord& rec) {
+  std::vector<int> nth;  // only where a corner is held
   for (size_t e = 0; e < m.ends.size(); ++e) {
     if (!m.ends[e].held) continue;
+    if (nth.empty()) nth = pair_ordinals(m.joints);
     const Interface& jt = m.joints[m.ends[e].joint];
-    rec.held_corners.push_back({corner_name(*m.c, jt.i, jt.j, m.ends[e].corner), corner_force(m, e)});
+    rec.held_corners.push_back({corner_name(*m.c, jt.i, jt.j, m.ends[e].corner, nth[size_t(m.ends[e].joint)]), corner_force(m, e)});
   }
 }
 

@@ -382,9 +382,10 @@ FirstStep prd_first_step(const Case& c, double contact_tolerance, double h, cons
   if (!(h > 0) || !std::isfinite(h)) throw std::invalid_argument("prd: the step must be a positive number");
   Model m = build_model(c, contact_tolerance);
   m.first_basis = FirstBasis::advanced;
+  const std::vector<int> nth = pair_ordinals(m.joints);
   auto name = [&](size_t e) {
     const Interface& jt = m.joints[m.ends[e].joint];
-    return corner_name(c, jt.i, jt.j, m.ends[e].corner);
+    return corner_name(c, jt.i, jt.j, m.ends[e].corner, nth[size_t(m.ends[e].joint)]);
   };
   hold_corners(m, held_closed);
   // As the run's first step: the LP for a step h, open corners (none at the start) over h.

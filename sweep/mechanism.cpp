@@ -17,14 +17,17 @@ std::string hinges_at_collapse(const Case& c, const RunResult& r) {
     // open separates.
     std::map<int, std::vector<int>> open;  // joint -> open corners
     for (const CornerRef& o : r.collapse->mechanism.open_corners) open[o.joint].push_back(o.corner);
+    const std::vector<int> nth = pair_ordinals(r.joints);
     for (const auto& [joint, corners] : open) {
       if (joint < 0 || joint >= int(r.joints.size())) continue;
       const JointInfo& j = r.joints[joint];
+      const int n = nth[size_t(joint)];
       if (corners.size() == 1) {
-        labels.push_back(corner_name(c, j.i, j.j, 1 - corners[0]));
+        labels.push_back(corner_name(c, j.i, j.j, 1 - corners[0], n));
       } else {
-        std::string name = corner_name(c, j.i, j.j, 0);
-        labels.push_back(name.substr(0, name.size() - 2) + ":open");
+        // "v3/v4:open"; a further joint between the same blocks by its corners, "base/post:CDopen".
+        const std::string name = corner_name(c, j.i, j.j, 0, n);
+        labels.push_back(name.substr(0, name.rfind(':')) + ":" + (n == 0 ? "" : corner_letter(0, n) + corner_letter(1, n)) + "open");
       }
     }
   }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -235,6 +236,27 @@ TEST(CaseErrors, AnIdHoldingASeparatorOfJointNamesIsRefused) {
     EXPECT_EQ(name.substr(0, name.find('/')), c.blocks[j.i].id);
     EXPECT_EQ(name.substr(name.find('/') + 1, name.find(':') - name.find('/') - 1), c.blocks[j.j].id);
   }
+}
+
+// A block seated in a support's notch meets it at three joints (the floor and both sides): each
+// corner has a name of its own, the further joints' corners lettered on (C and D, E and F), so
+// a report's hinge and `--hold` point at one corner.
+TEST(CaseErrors, ABlockInANotchHasOneNamePerCorner) {
+  const Case c = parse_case(R"({"format": "masonry-case/1", "name": "notch", "gravity": 9.81, "blocks": [
+    {"id": "base", "support": true, "vertices": [[-1, -0.5], [1, -0.5], [1, 0.5], [0.25, 0.5], [0.25, 0], [-0.25, 0], [-0.25, 0.5], [-1, 0.5]]},
+    {"id": "post", "density": 2000, "vertices": [[-0.25, 0], [0.25, 0], [0.25, 1], [-0.25, 1]]}],
+    "motion": {"step": 0.01, "max_steps": 1, "supports": [{"block": "base", "rotation": 1, "about": [0, -0.5]}]}})",
+                            "notch.json");
+  const std::vector<Interface> joints = detect_interfaces(c, c.prd.contact_tolerance);
+  ASSERT_EQ(joints.size(), 3u);
+  EXPECT_EQ(pair_ordinals(joints), (std::vector<int>{0, 1, 2}));
+  std::set<std::string> names;
+  const std::vector<int> nth = pair_ordinals(joints);
+  for (size_t k = 0; k < joints.size(); ++k)
+    for (int corner : {0, 1}) names.insert(corner_name(c, joints[k].i, joints[k].j, corner, nth[k]));
+  EXPECT_EQ(names, (std::set<std::string>{"base/post:A", "base/post:B", "base/post:C", "base/post:D", "base/post:E", "base/post:F"}));
+  EXPECT_EQ(corner_letter(0, 13), "A14");  // past Z
+  EXPECT_EQ(corner_letter(1, 13), "B14");
 }
 
 TEST(CaseErrors, MissingFileIsOneLine) {

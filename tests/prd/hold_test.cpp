@@ -92,5 +92,24 @@ TEST(PrdHold, ACornerNoJointHasIsRefusedNamingTheField) {
   EXPECT_THROW(with_option(load_case(kArch), "prd.hold_closed", std::vector<std::string>{"v3"}), CaseError);
 }
 
+// Two blocks that meet at more than one joint (a post seated in a notch: the floor, then both
+// sides) name each joint's corners apart, so a hold holds the one corner it names.
+TEST(PrdHold, AHoldInANotchHoldsTheCornerItNames) {
+  const Case seated = parse_case(R"({"format": "masonry-case/1", "name": "notch", "gravity": 9.81, "blocks": [
+    {"id": "base", "support": true, "vertices": [[-1, -0.5], [1, -0.5], [1, 0.5], [0.25, 0.5], [0.25, 0], [-0.25, 0], [-0.25, 0.5], [-1, 0.5]]},
+    {"id": "post", "density": 2000, "vertices": [[-0.25, 0], [0.25, 0], [0.25, 1], [-0.25, 1]]}],
+    "motion": {"step": 0.01, "max_steps": 3, "supports": [{"block": "base", "rotation": 1, "about": [0, -0.5]}]}})",
+                                 "notch.json");
+  for (const std::string corner : {"base/post:A", "base/post:C", "base/post:F"}) {
+    const Case c = with_option(seated, "prd.hold_closed", std::vector<std::string>{corner});
+    const RunResult r = prd_run(c, PrdSettings::from_case(c));
+    ASSERT_FALSE(r.steps.empty()) << r.message;
+    for (const StepRecord& s : r.steps) {
+      ASSERT_EQ(s.held_corners.size(), 1u) << corner << " at d = " << s.d;
+      EXPECT_EQ(s.held_corners[0].corner, corner);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace masonry
