@@ -535,6 +535,7 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
     for (double f : o.hinge_fractions) ds.push_back(f * k.d_max);
     k.motion = mechanism_checks(c, a, b, ds, o.ring_shift);
     k.ring_shift = o.ring_shift;
+    k.sliding = slip_check(c, a, b, k.d_max);
   }
   if (!ra.empty() && !rb.empty() && k.hinges_skipped.empty()) {
     std::set<double> done;
@@ -657,6 +658,16 @@ ojson to_json(const Comparison& k) {
   j["mechanism_agreement"] = ma;
   if (!k.mechanism_skipped.empty()) j["mechanism_note"] = k.mechanism_skipped;
   if (k.mechanism_skipped.empty()) j["mechanism_joints_apart"] = k.ring_shift;
+  if (k.sliding) {
+    const auto one = [](const JointSlip& x) {
+      return ojson{{"joint", x.joint >= 0 ? ojson(x.label) : ojson(nullptr)}, {"a", json_number(x.a)}, {"b", json_number(x.b)}};
+    };
+    j["sliding"] = ojson{{"to", json_number(k.sliding->to)},
+                         {"a_to", json_number(k.sliding->a_to)},
+                         {"b_to", json_number(k.sliding->b_to)},
+                         {"largest_a", one(k.sliding->largest_a)},
+                         {"largest_b", one(k.sliding->largest_b)}};
+  }
   j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }

@@ -118,6 +118,26 @@ std::optional<StepRecord> collapse_state(const RunResult& r);
 // same joint's (MotionCheck::agreement).
 std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, const RunResult& b, const std::vector<double>& ds, int shift = 0);
 
+// How far each run's joints slid along themselves over the common range (compare/README.md,
+// "Sliding"): at each joint (run a's), the relative displacement along the joint of the corner
+// that opened less, between the run's first record and its last at or before `to`. That corner
+// is the one in contact (a hinge's pivot, which a rotation about it does not move along the
+// joint): a rigid-block mechanism without sliding gives none, a joint's elastic shear microns,
+// friction slip as far as the joint slid.
+struct JointSlip {
+  int joint = -1;                                  // index into run a's joints, -1 when none
+  std::string label;                               // "blockA/blockB" (case text: escape before display)
+  double a = std::numeric_limits<double>::quiet_NaN();  // m, |net slip| in run a
+  double b = std::numeric_limits<double>::quiet_NaN();  // m, in run b
+};
+struct SlipCheck {
+  double to = 0.0;         // m: each run read from its first record to its last at or before this d
+  double a_to = 0.0, b_to = 0.0;  // m: those last records' d
+  JointSlip largest_a;     // the joint run a slid most at, with run b's slip there
+  JointSlip largest_b;     // the joint run b slid most at, with run a's
+};
+SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, double to);
+
 // Horizontal (H = Fx / W) and vertical (V = Fy / W) reaction of one support against d, for both
 // runs, on the common d grid.
 struct SupportCurve {
@@ -153,6 +173,7 @@ struct Comparison {
   double hinge_gap = 0.0;        // m, opening beyond the settled gap a hinge needs (settled_gap)
   std::vector<HingeCheck> hinges;
   std::vector<MotionCheck> motion;  // mechanism agreement per checked interval
+  std::optional<SlipCheck> sliding;  // how far the joints slid over the common range (with the mechanism checks)
   int ring_shift = 0;               // the CompareOptions::ring_shift it was measured with
   std::string d_unit = "m";         // the path parameter's SI unit (path_unit): "m" or "rad"
   double time_ratio = 0.0;          // time_b / time_a (NaN when time_a is 0)

@@ -311,6 +311,33 @@ std::optional<StepRecord> collapse_state(const RunResult& r) {
   return std::nullopt;
 }
 
+SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, double to) {
+  SlipCheck out;
+  out.to = to;
+  const std::vector<const StepRecord*> ra = stable_records(a), rb = stable_records(b);
+  if (ra.empty() || rb.empty()) return out;
+  const std::vector<JointFrame> frames = frames_of(c, a);
+  std::vector<Vec2> c0;
+  for (const Block& blk : c.blocks) c0.push_back(centroid(blk.vertices));
+  const StepRecord *ea = record_at(ra, to), *eb = record_at(rb, to);
+  out.a_to = ea->d;
+  out.b_to = eb->d;
+  const Side sa = side_of(c, frames, c0, *ra.front(), *ea, nullptr, 0.0), sb = side_of(c, frames, c0, *rb.front(), *eb, nullptr, 0.0);
+  // Along the joint at the corner that opened less: the one still in contact.
+  const auto slip = [&](const Side& s, size_t k) {
+    const JointFrame& f = frames[k];
+    return std::abs((s.da[k].dot(f.n) <= s.db[k].dot(f.n) ? s.da[k] : s.db[k]).dot(f.t));
+  };
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (frames[k].lo < 0 || size_t(frames[k].hi) >= c.blocks.size()) continue;
+    const double x = slip(sa, k), y = slip(sb, k);
+    const std::string label = c.blocks[size_t(a.joints[k].i)].id + "/" + c.blocks[size_t(a.joints[k].j)].id;
+    if (out.largest_a.joint < 0 || x > out.largest_a.a) out.largest_a = {int(k), label, x, y};
+    if (out.largest_b.joint < 0 || y > out.largest_b.b) out.largest_b = {int(k), label, x, y};
+  }
+  return out;
+}
+
 std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, const RunResult& b, const std::vector<double>& ds, int shift) {
   std::vector<MotionCheck> out;
   const std::vector<const StepRecord*> ra = stable_records(a), rb = stable_records(b);

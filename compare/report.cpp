@@ -425,6 +425,19 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
     t.rows.push_back({where, low ? Cell(agree, CellStyle::strong) : Cell(agree), differs ? Cell(most) : Cell("-")});
   }
   d.table(std::move(t));
+  if (cmp.sliding && cmp.sliding->largest_a.joint >= 0) {
+    // In mm to the micron: elastic shear is microns, friction slip millimetres.
+    const auto len = [](double m) { return std::isfinite(m) ? fmt::number(m * 1e3, "%.3f", m * 1e3) + " mm" : std::string("n/a"); };
+    const SlipCheck& s = *cmp.sliding;
+    d.paragraph({"Sliding: how far each run's joints slid along themselves from d = 0 to the end of the common range (" + fmt::mm(s.a_to) + " " + unit +
+                 " in " + cmp.a.label + ", " + fmt::mm(s.b_to) + " " + unit + " in " + cmp.b.label +
+                 "), at the corner of each joint that opened less, the one in contact (blocks turning about a hinge slide nowhere there; a "
+                 "joint's elastic shear is microns). Most in " + cmp.a.label + ": " + s.largest_a.label + ", " + len(s.largest_a.a) + " (" + cmp.b.label +
+                 " " + len(s.largest_a.b) + " there); most in " + cmp.b.label + ": " + s.largest_b.label + ", " + len(s.largest_b.b) + " (" +
+                 cmp.a.label + " " + len(s.largest_b.a) + " there). Where one method's joints slid and the other's did not, the two "
+                 "answer for different mechanisms; a DEM whose joints slid where PRD's mechanism turns about hinges and its friction "
+                 "suffices may have joints stiff against the weights (dem/README.md, \"Contact damping\")."});
+  }
 }
 
 void comparison_section(Document& d, const Report& r, size_t k, const std::vector<Figure>& figures, bool page) {

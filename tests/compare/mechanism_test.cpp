@@ -338,5 +338,57 @@ TEST(Mechanism, TheLimitIsANumberFromZeroToOne) {
   }
 }
 
+// Sliding over the common range (compare/README.md, "Sliding"). Closed forms: a block moved along
+// its joint by 2 mm slid 2 mm there; one turned about a corner of its joint slid nowhere (that
+// corner stays in contact); a joint's elastic shear is its shear force over ks A.
+TEST(Sliding, ASlideIsItsLengthAndAHingeNone) {
+  const Case c = load("tilting-block");  // ground, then a 0.2 x 0.4 m block on it
+  const RunResult base = prd(with_option(c, "motion.max_steps", 1));
+  ASSERT_EQ(base.joints.size(), 1u);
+  ASSERT_GE(base.steps.size(), 2u);
+  // Two records: the start, then the block moved with the ground held.
+  const auto moved = [&](const Pose& q) {
+    RunResult r = base;
+    r.steps.resize(2);
+    r.steps[1].poses = r.steps[0].poses;
+    r.steps[1].poses[1] = q;
+    r.capacity = r.steps[1].d;
+    r.status = RunStatus::max_steps;
+    return r;
+  };
+  const Vec2 c0 = centroid(c.blocks[1].vertices);
+  const RunResult slid = moved({c0.x() + 0.002, c0.y(), 0.0});
+  // Toppled by 0.05 rad to the right, about its right bottom corner (0.1, 0): the centroid goes
+  // round it and the left corner lifts.
+  const double t = -0.05;
+  const Vec2 pivot(0.1, 0.0), arm = c0 - pivot;
+  const Vec2 turned_c = pivot + Vec2(std::cos(t) * arm.x() - std::sin(t) * arm.y(), std::sin(t) * arm.x() + std::cos(t) * arm.y());
+  const RunResult hinged = moved({turned_c.x(), turned_c.y(), t});
+  const Comparison k = compare_runs(c, slid, hinged);
+  ASSERT_TRUE(k.sliding.has_value());
+  EXPECT_EQ(k.sliding->largest_a.label, "ground/block");
+  EXPECT_NEAR(k.sliding->largest_a.a, 0.002, 1e-12);
+  EXPECT_LT(k.sliding->largest_a.b, 1e-12);  // the pivot corner stays where it was
+  EXPECT_NEAR(k.sliding->largest_b.a, 0.002, 1e-12);
+  const nlohmann::ordered_json j = to_json(k);
+  EXPECT_NEAR(j["sliding"]["largest_a"]["a"].get<double>(), 0.002, 1e-12);
+  EXPECT_EQ(j["sliding"]["largest_b"]["joint"], "ground/block");
+}
+
+TEST(Sliding, ADemBlockOnATiltingSlabShearsElasticallyAndPrdRidesRigidly) {
+  const Case c = load("tilting-block");
+  const RunResult p = prd(c), d = dem(c);
+  const Comparison k = compare_runs(c, p, d);
+  ASSERT_TRUE(k.sliding.has_value());
+  // PRD's block rides the slab rigidly until it topples: its joint does not move.
+  EXPECT_LT(k.sliding->largest_a.a, 1e-9);
+  // The DEM's joint shears by its friction-free elastic spring: W sin(tilt) / (ks A) at the end
+  // of the common range (the tilt in rad, 1 rad of tilt per m of d).
+  const double W = 0.2 * 0.4 * 1.0 * 2000 * 9.81, A = 0.2 * 1.0;
+  const double elastic = W * std::sin(k.sliding->b_to) / (*c.dem.ks * A);
+  EXPECT_GT(k.sliding->largest_b.b, 0.5 * elastic);
+  EXPECT_LT(k.sliding->largest_b.b, 2.0 * elastic);
+}
+
 }  // namespace
 }  // namespace masonry
