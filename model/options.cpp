@@ -24,8 +24,7 @@ constexpr double kMaxJointStiffness = 1e18;  // Pa/m
 constexpr double kMaxModelTime = 1e4;        // s of DEM model time
 constexpr double kMaxSteps = 1e8;            // steps of one run: 1e8 LPs or DEM increments is days of work
 
-// A joint corner as results name it: "BLOCK/BLOCK:A" or ":B".
-// BLOCK/BLOCK:A, as corner_name writes it: a letter A to Z (C and on for a further joint between
+// A joint corner as results name it, BLOCK/BLOCK:A, as corner_name writes it: a letter A to Z (C and on for a further joint between
 // the same blocks), or A or B and the joint's number past Z.
 bool is_joint_corner(const std::string& s) {
   const size_t slash = s.find('/'), colon = s.rfind(':');

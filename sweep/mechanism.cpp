@@ -52,7 +52,8 @@ std::string hinges_at_collapse(const Case& c, const RunResult& r) {
 }
 
 std::vector<std::string> hinge_labels(const std::string& hinges) {
-  // Each label is BLOCK/BLOCK:A, :B or :open, the labels joined by spaces. Ids may hold spaces
+  // Each label is BLOCK/BLOCK:A (a corner letter, model/interfaces.hpp) or :open (:CDopen), the
+  // labels joined by spaces. Ids may hold spaces
   // but never ':' (model/case.cpp, id_fault), so a label ends at the word after its colon.
   std::vector<std::string> out;
   size_t start = 0;
