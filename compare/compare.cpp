@@ -535,7 +535,7 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
     for (double f : o.hinge_fractions) ds.push_back(f * k.d_max);
     k.motion = mechanism_checks(c, a, b, ds, o.ring_shift);
     k.ring_shift = o.ring_shift;
-    k.sliding = slip_check(c, a, b, k.d_max);
+    k.sliding = slip_check(c, a, b, k.d_max, std::max(k.hinge_gap, c.prd.contact_tolerance));
   }
   if (!ra.empty() && !rb.empty() && k.hinges_skipped.empty()) {
     std::set<double> done;

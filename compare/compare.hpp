@@ -126,8 +126,8 @@ std::vector<MotionCheck> mechanism_checks(const Case& c, const RunResult& a, con
 // friction slip as far as the joint slid.
 struct JointSlip {
   int joint = -1;                                  // index into run a's joints, -1 when none
-  std::string label;                               // "blockA/blockB" (case text: escape before display)
-  double a = std::numeric_limits<double>::quiet_NaN();  // m, |net slip| in run a
+  std::string label;                               // joint_name, "blockA/blockB" (case text: escape before display)
+  double a = std::numeric_limits<double>::quiet_NaN();  // m, |net slip| in run a (NaN: the joint came apart)
   double b = std::numeric_limits<double>::quiet_NaN();  // m, in run b
 };
 struct SlipCheck {
@@ -136,7 +136,8 @@ struct SlipCheck {
   JointSlip largest_a;     // the joint run a slid most at, with run b's slip there
   JointSlip largest_b;     // the joint run b slid most at, with run a's
 };
-SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, double to);
+// A joint whose corner in contact opened by more than min_gap came apart, and is left out.
+SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, double to, double min_gap);
 
 // Horizontal (H = Fx / W) and vertical (V = Fy / W) reaction of one support against d, for both
 // runs, on the common d grid.

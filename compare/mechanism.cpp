@@ -9,6 +9,7 @@
 
 #include "compare/compare.hpp"
 #include "model/energy.hpp"
+#include "model/interfaces.hpp"
 
 namespace masonry {
 
@@ -214,6 +215,7 @@ MotionCheck check_interval(const Case& c, const RunResult& a, const RunResult& b
   m.b_from = e.b0->d;
   m.b_to = e.b1->d;
   const std::vector<JointFrame> frames = frames_of(c, a);
+  const std::vector<int> nth = pair_ordinals(a.joints);
   std::vector<Vec2> c0;
   for (const Block& blk : c.blocks) c0.push_back(centroid(blk.vertices));
   const double W = a.total_weight > 0 ? a.total_weight : b.total_weight > 0 ? b.total_weight : 1.0;
@@ -274,7 +276,7 @@ MotionCheck check_interval(const Case& c, const RunResult& a, const RunResult& b
       const size_t k = share[n].second;
       MotionDiff d;
       d.joint = int(k);
-      d.label = c.blocks[size_t(a.joints[k].i)].id + "/" + c.blocks[size_t(a.joints[k].j)].id;
+      d.label = joint_name(c, a.joints[k].i, a.joints[k].j, nth[k]);
       d.share = share[n].first / total;
       d.weight = w[k];
       d.a = motion_of(sa, frames[k], k);
@@ -311,7 +313,7 @@ std::optional<StepRecord> collapse_state(const RunResult& r) {
   return std::nullopt;
 }
 
-SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, double to) {
+SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, double to, double min_gap) {
   SlipCheck out;
   out.to = to;
   const std::vector<const StepRecord*> ra = stable_records(a), rb = stable_records(b);
@@ -323,17 +325,20 @@ SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, doub
   out.a_to = ea->d;
   out.b_to = eb->d;
   const Side sa = side_of(c, frames, c0, *ra.front(), *ea, nullptr, 0.0), sb = side_of(c, frames, c0, *rb.front(), *eb, nullptr, 0.0);
-  // Along the joint at the corner that opened less: the one still in contact.
+  // Along the joint at the corner that opened less: the one still in contact. Where that one
+  // opened by more than min_gap too, the joint came apart, and its travel is no slip (NaN).
   const auto slip = [&](const Side& s, size_t k) {
     const JointFrame& f = frames[k];
-    return std::abs((s.da[k].dot(f.n) <= s.db[k].dot(f.n) ? s.da[k] : s.db[k]).dot(f.t));
+    const Vec2& x = s.da[k].dot(f.n) <= s.db[k].dot(f.n) ? s.da[k] : s.db[k];
+    return x.dot(f.n) > min_gap ? std::numeric_limits<double>::quiet_NaN() : std::abs(x.dot(f.t));
   };
+  const std::vector<int> nth = pair_ordinals(a.joints);
   for (size_t k = 0; k < frames.size(); ++k) {
     if (frames[k].lo < 0 || size_t(frames[k].hi) >= c.blocks.size()) continue;
     const double x = slip(sa, k), y = slip(sb, k);
-    const std::string label = c.blocks[size_t(a.joints[k].i)].id + "/" + c.blocks[size_t(a.joints[k].j)].id;
-    if (out.largest_a.joint < 0 || x > out.largest_a.a) out.largest_a = {int(k), label, x, y};
-    if (out.largest_b.joint < 0 || y > out.largest_b.b) out.largest_b = {int(k), label, x, y};
+    const std::string label = joint_name(c, a.joints[k].i, a.joints[k].j, nth[k]);
+    if (std::isfinite(x) && !(x <= out.largest_a.a)) out.largest_a = {int(k), label, x, y};
+    if (std::isfinite(y) && !(y <= out.largest_b.b)) out.largest_b = {int(k), label, x, y};
   }
   return out;
 }

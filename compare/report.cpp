@@ -1,3 +1,4 @@
+#include "model/interfaces.hpp"
 #include "compare/report.hpp"
 
 #include <algorithm>
@@ -364,12 +365,14 @@ std::vector<Item> settled_cracks(const Report& r) {
       items.push_back({{rr.label + ": none: it did not settle as drawn"}, {}});
       continue;
     }
-    if (rr.run && !rr.run->steps.empty())
+    if (rr.run && !rr.run->steps.empty()) {
+      const std::vector<int> nth = pair_ordinals(rr.run->joints);
       for (int j : rr.run->steps.front().cracked) {
         if (j < 0 || j >= static_cast<int>(rr.run->joints.size())) continue;
         const JointInfo& J = rr.run->joints[j];
-        list += (list.empty() ? "" : ", ") + r.c->blocks[J.i].id + "/" + r.c->blocks[J.j].id;
+        list += (list.empty() ? "" : ", ") + joint_name(*r.c, J.i, J.j, nth[size_t(j)]);
       }
+    }
     items.push_back({{rr.label + ": " + (list.empty() ? std::string("none") : list)}, {}});
   }
   return items;

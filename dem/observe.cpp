@@ -7,6 +7,7 @@
 
 #include "dem/model_impl.hpp"
 #include "model/energy.hpp"
+#include "model/interfaces.hpp"
 
 namespace masonry {
 
@@ -215,8 +216,8 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
     const SupportMotion& sm = m.c.motion.supports[k];
     return Vec2(sm.about + m.d_now * sm.translation);
   };
-  std::map<std::pair<int, int>, int> joint_of;
-  for (size_t k = 0; k < joints.size(); ++k) joint_of.emplace(std::make_pair(joints[k].i, joints[k].j), static_cast<int>(k));
+  std::map<std::pair<int, int>, std::vector<int>> joints_of;
+  for (size_t k = 0; k < joints.size(); ++k) joints_of[{joints[k].i, joints[k].j}].push_back(static_cast<int>(k));
   struct Acc {
     double n = 0, s = 0;
     double moment = 0;  // of the contact forces about the model's frame's origin
@@ -229,6 +230,29 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
     const double th = m.ang[J.i];
     n = rotate(J.normal, std::cos(th), std::sin(th));
     t = rotate((J.b - J.a).normalized(), std::cos(th), std::sin(th));
+  };
+  // The joint a contact point between blocks i0 < j0 belongs to. Two blocks may meet at several
+  // joints (a block seated in a support's notch: its floor and both sides), and then the point
+  // goes to the joint whose face it lies on: among those whose normal is within 8 degrees of the
+  // contact's, the nearest (its segment as block i carries it), else the best aligned.
+  auto joint_for = [&](int i0, int j0, const PointState& ps) {
+    const auto it = joints_of.find({i0, j0});
+    if (it == joints_of.end()) return -1;
+    if (it->second.size() == 1) return it->second.front();
+    int best = -1;
+    double best_align = -1, best_dist = INFINITY;
+    for (const int k : it->second) {
+      const Interface& J = joints[size_t(k)];
+      Vec2 n, t;
+      joint_frame(J, n, t);
+      const double align = std::abs(n.dot(ps.normal)), ci = std::cos(m.ang[J.i]), si = std::sin(m.ang[J.i]);
+      const Vec2 a = m.pos[J.i] + rotate(J.a - m.origin - m.c0[J.i], ci, si), b = m.pos[J.i] + rotate(J.b - m.origin - m.c0[J.i], ci, si);
+      const double dist = distance_to_segment(ps.point, a, b);
+      const bool aligned = align > 0.99, best_aligned = best_align > 0.99;
+      if (best < 0 || (aligned && (!best_aligned || dist < best_dist)) || (!aligned && !best_aligned && align > best_align))
+        best = k, best_align = align, best_dist = dist;
+    }
+    return best;
   };
   for (const Pair& pr : m.pairs)
     for (int i = 0; i < pr.n; ++i) {
@@ -243,14 +267,13 @@ StepRecord DemModel::record(const std::vector<Interface>& joints, const std::vec
         R.force -= f;
         R.moment -= cross(ps.point - about(pr.bb), f);
       }
-      const int i0 = std::min(pr.ba, pr.bb), j0 = std::max(pr.ba, pr.bb);
-      const auto it = joint_of.find({i0, j0});
-      if (it == joint_of.end()) continue;
-      const Interface& J = joints[it->second];
+      const int k = joint_for(std::min(pr.ba, pr.bb), std::max(pr.ba, pr.bb), ps);
+      if (k < 0) continue;
+      const Interface& J = joints[size_t(k)];
       Vec2 n, t;
       joint_frame(J, n, t);
       const Vec2 fj = pr.bb == J.j ? f : Vec2(-f);
-      Acc& a = acc[it->second];
+      Acc& a = acc[size_t(k)];
       const double fn = fj.dot(n);
       a.n += fn;
       a.s += fj.dot(t);

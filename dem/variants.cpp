@@ -63,7 +63,7 @@ std::vector<DemVariant> convergence_variants(const DemSettings& base) {
   // the joints are stiff against the weights the undamped joints ratchet (dem/README.md,
   // "Contact damping"), and this variant is the one that parts from the default.
   const bool add = !(base.contact_damping > 0);
-  DemVariant cd{"contact-damping", add ? "contact damping 0.3" : "no contact damping", base};
+  DemVariant cd{"contact-damping", add ? "contact damping " + num(kConvergenceContactDamping) : "no contact damping", base};
   cd.settings.contact_damping = add ? kConvergenceContactDamping : 0.0;
   v.push_back(cd);
   if (base.friction_angle < 90) {

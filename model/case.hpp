@@ -171,8 +171,8 @@ struct Case {
 std::string printable(const std::string& text, size_t max = 80);
 
 // Why `id` cannot name a block, one clause for a message ("" when it can). Joints are named
-// BLOCK/BLOCK and their corners BLOCK/BLOCK:A or :B (results, --hold, compare's and sweeps'
-// mechanism keys): with '/' in ids, blocks 'a' with 'b/c' and 'a/b' with 'c' name two joints
+// BLOCK/BLOCK and their corners BLOCK/BLOCK:A or :B (:C, :D and on for further joints between the
+// same blocks; results, --hold, compare's and sweeps' mechanism keys): with '/' in ids, blocks 'a' with 'b/c' and 'a/b' with 'c' name two joints
 // a/b/c, so an id may hold neither separator, and every name splits at its one '/' and one ':'.
 // The case loader refuses such an id; the drawing import refuses the text that would make one.
 std::string id_fault(const std::string& id);

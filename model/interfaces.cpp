@@ -71,6 +71,13 @@ std::string corner_letter(int corner, int nth) {
   return std::string(corner == 0 ? "A" : "B") + std::to_string(nth + 1);
 }
 
+std::string joint_name(const Case& c, int i, int j, int nth) {
+  const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
+  std::string s = id(i) + "/" + id(j);
+  if (nth > 0) s.append(":").append(corner_letter(0, nth)).append(corner_letter(1, nth));  // (not ":" + ...: GCC 12 warns falsely, PR105651)
+  return s;
+}
+
 std::string corner_name(const Case& c, int i, int j, int corner, int nth) {
   const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
   return id(i) + "/" + id(j) + ":" + corner_letter(corner, nth);

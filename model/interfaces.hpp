@@ -34,6 +34,9 @@ std::vector<Interface> detect_interfaces(const Case& c, double tol);
 std::string corner_name(const Case& c, int i, int j, int corner, int nth = 0);
 // The letters corner_name gives corner `corner` (0 or 1) of the `nth` joint between two blocks.
 std::string corner_letter(int corner, int nth);
+// A joint's name: "BLOCK/BLOCK", and for a further joint between the same blocks its corners'
+// letters after a colon, "base/post:CD".
+std::string joint_name(const Case& c, int i, int j, int nth = 0);
 
 // For each joint of `joints` (anything with block indices i and j), how many joints before it
 // join the same two blocks: corner_name's `nth`.

@@ -27,11 +27,14 @@ constexpr double kMaxSteps = 1e8;            // steps of one run: 1e8 LPs or DEM
 // A joint corner as results name it, BLOCK/BLOCK:A, as corner_name writes it: a letter A to Z (C and on for a further joint between
 // the same blocks), or A or B and the joint's number past Z.
 bool is_joint_corner(const std::string& s) {
-  const size_t slash = s.find('/'), colon = s.rfind(':');
-  if (slash == std::string::npos || slash == 0 || colon == std::string::npos || colon < slash + 2 || colon + 1 >= s.size()) return false;
+  const size_t slash = s.find('/'), colon = s.find(':');
+  if (slash == std::string::npos || slash == 0 || s.rfind('/') != slash || colon == std::string::npos || s.rfind(':') != colon ||
+      colon < slash + 2 || colon + 1 >= s.size())
+    return false;
   const std::string x = s.substr(colon + 1);
   if (x.size() == 1) return x[0] >= 'A' && x[0] <= 'Z';
-  return (x[0] == 'A' || x[0] == 'B') && x.find_first_not_of("0123456789", 1) == std::string::npos;
+  if ((x[0] != 'A' && x[0] != 'B') || x[1] == '0' || x.find_first_not_of("0123456789", 1) != std::string::npos) return false;
+  return x.size() > 3 || std::stoi(x.substr(1)) >= 14;  // the letters run out at the 14th joint
 }
 
 const Option<Case> kCaseRows[] = {

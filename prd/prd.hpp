@@ -66,7 +66,8 @@ PrdCheck prd_check(const Case& c, double contact_tolerance);
 
 // The run's first LP: the mechanism the prescribed support motion over one step h drives from
 // the initial configuration, with the corners named in `held_closed` ("BLOCK/BLOCK:A" or ":B",
-// the joint's blocks in the order the results name them) kept closed. Comparing the potential
+// further joints between the same blocks ":C", ":D" and on; the joint's blocks in the order the
+// results name them) kept closed. Comparing the potential
 // energy it releases with and without a hinge held closed measures how near the next-best
 // mechanism is (dem/README.md, "The branch X"). Throws std::runtime_error naming an unknown corner.
 struct FirstStep {

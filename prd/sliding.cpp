@@ -2,6 +2,7 @@
 #include <cmath>
 #include <utility>
 
+#include "model/interfaces.hpp"
 #include "prd/internal.hpp"
 
 namespace masonry::prd_detail {
@@ -114,9 +115,10 @@ namespace masonry {
 
 SlidingSummary sliding_summary(const Case& c, const RunResult& r) {
   SlidingSummary out;
-  auto joint_name = [&](int k) {
+  const std::vector<int> nth = pair_ordinals(r.joints);
+  auto name_of = [&](int k) {
     if (k < 0 || k >= static_cast<int>(r.joints.size())) return std::string();
-    return c.blocks[r.joints[k].i].id + "/" + c.blocks[r.joints[k].j].id;
+    return joint_name(c, r.joints[k].i, r.joints[k].j, nth[size_t(k)]);
   };
   const StepRecord* req = nullptr;
   const StepRecord* dem = nullptr;
@@ -130,10 +132,10 @@ SlidingSummary sliding_summary(const Case& c, const RunResult& r) {
   out.required_friction_angle = req->sliding->required_angle;
   out.d = req->d;
   out.step = req->index;
-  out.joint = joint_name(req->sliding->required_joint);
+  out.joint = name_of(req->sliding->required_joint);
   out.max_demand_angle = dem->sliding->demand_angle;
   out.demand_d = dem->d;
-  out.demand_joint = joint_name(dem->sliding->demand_joint);
+  out.demand_joint = name_of(dem->sliding->demand_joint);
   return out;
 }
 
@@ -147,7 +149,7 @@ std::optional<SlidingExceedance> first_sliding(const Case& c, const RunResult& r
     e.d = s.d;
     e.angle = angle;
     e.joint = required ? s.sliding->required_joint : s.sliding->demand_joint;
-    if (e.joint >= 0) e.blocks = c.blocks[r.joints[e.joint].i].id + "/" + c.blocks[r.joints[e.joint].j].id;
+    if (e.joint >= 0) e.blocks = joint_name(c, r.joints[e.joint].i, r.joints[e.joint].j, pair_ordinals(r.joints)[size_t(e.joint)]);
     return e;
   }
   return std::nullopt;

@@ -26,8 +26,7 @@ std::string hinges_at_collapse(const Case& c, const RunResult& r) {
         labels.push_back(corner_name(c, j.i, j.j, 1 - corners[0], n));
       } else {
         // "v3/v4:open"; a further joint between the same blocks by its corners, "base/post:CDopen".
-        const std::string name = corner_name(c, j.i, j.j, 0, n);
-        labels.push_back(name.substr(0, name.rfind(':')) + ":" + (n == 0 ? "" : corner_letter(0, n) + corner_letter(1, n)) + "open");
+        labels.push_back(joint_name(c, j.i, j.j, n) + (n == 0 ? ":open" : "open"));
       }
     }
   }
@@ -55,16 +54,15 @@ std::vector<std::string> hinge_labels(const std::string& hinges) {
   // Each label is BLOCK/BLOCK:A (a corner letter, model/interfaces.hpp) or :open (:CDopen), the
   // labels joined by spaces. Ids may hold spaces
   // but never ':' (model/case.cpp, id_fault), so a label ends at the word after its colon.
+  // One space between labels, and an id may begin with one: none is skipped but the separator.
   std::vector<std::string> out;
   size_t start = 0;
   while (start < hinges.size()) {
-    while (start < hinges.size() && hinges[start] == ' ') ++start;
-    if (start >= hinges.size()) break;
     const size_t colon = hinges.find(':', start);
     size_t end = colon == std::string::npos ? hinges.size() : hinges.find(' ', colon);
     if (end == std::string::npos) end = hinges.size();
     out.push_back(hinges.substr(start, end - start));
-    start = end;
+    start = end + 1;
   }
   return out;
 }

@@ -112,4 +112,37 @@ TEST(DemStack, BothMethodsReportTheSameWeightWithUpwardAndSidewaysLoads) {
   EXPECT_NEAR(d.steps[0].reactions[0].force.x(), -50.0, 1e-3 * W);
 }
 
+// A post seated in a support's notch meets it at three joints (the right wall, the floor and the
+// left wall, in the joints' order): each contact point's force is recorded at the joint whose face
+// it lies on, so the three joints' forces hold the post's weight up (equilibrium, 1e-3 of W) at
+// rest and with the support tilted, the floor carrying the weight's component across it. Until
+// 2026-11-28 every point went to the pair's first joint (the right wall) and no forces were
+// recorded at all.
+TEST(DemStack, APostInANotchHasItsForcesOnEachFace) {
+  const Case c = parse_case(R"({"format": "masonry-case/1", "name": "notch", "gravity": 9.81, "blocks": [
+    {"id": "base", "support": true, "vertices": [[-1, -0.5], [1, -0.5], [1, 0.5], [0.25, 0.5], [0.25, 0], [-0.25, 0], [-0.25, 0.5], [-1, 0.5]]},
+    {"id": "post", "density": 2000, "vertices": [[-0.25, 0], [0.25, 0], [0.25, 1], [-0.25, 1]]}],
+    "motion": {"step": 0.02, "max_steps": 3, "supports": [{"block": "base", "rotation": 1, "about": [0, -0.5]}]}})",
+                            "notch.json");
+  const RunResult r = dem_run(c, DemSettings::from_case(c));
+  ASSERT_EQ(r.joints.size(), 3u);
+  ASSERT_EQ(r.steps.size(), 4u) << r.message;
+  const double W = 0.5 * 1.0 * 1.0 * 2000 * 9.81;
+  for (const StepRecord& s : r.steps) {
+    const double t = s.poses[0].angle;  // the support's tilt
+    Vec2 sum(0, 0);
+    double floor = 0;
+    for (const JointForce& f : s.forces) {
+      const JointInfo& j = r.joints[size_t(f.joint)];
+      const Vec2 along = (j.b - j.a).normalized();
+      const Vec2 tangent(std::cos(t) * along.x() - std::sin(t) * along.y(), std::sin(t) * along.x() + std::cos(t) * along.y());
+      sum += f.normal * f.n + f.shear * tangent;  // on the post (out of the base)
+      if (std::abs(j.a.y()) < 1e-9 && std::abs(j.b.y()) < 1e-9) floor = f.normal;
+    }
+    EXPECT_NEAR(sum.x(), 0.0, 1e-3 * W) << "d = " << s.d;
+    EXPECT_NEAR(sum.y(), W, 1e-3 * W) << "d = " << s.d;
+    EXPECT_GT(floor, 0.9 * W * std::cos(t)) << "d = " << s.d;
+  }
+}
+
 }  // namespace

@@ -238,9 +238,10 @@ TEST(CaseErrors, AnIdHoldingASeparatorOfJointNamesIsRefused) {
   }
 }
 
-// A block seated in a support's notch meets it at three joints (the floor and both sides): each
-// corner has a name of its own, the further joints' corners lettered on (C and D, E and F), so
-// a report's hinge and `--hold` point at one corner.
+// A block seated in a support's notch meets it at three joints (both sides and the floor): each
+// corner has a name of its own, the further joints' corners lettered on in the joints' order
+// (the right wall A and B, the floor C and D, the left wall E and F), so a report's hinge and
+// `--hold` point at one corner.
 TEST(CaseErrors, ABlockInANotchHasOneNamePerCorner) {
   const Case c = parse_case(R"({"format": "masonry-case/1", "name": "notch", "gravity": 9.81, "blocks": [
     {"id": "base", "support": true, "vertices": [[-1, -0.5], [1, -0.5], [1, 0.5], [0.25, 0.5], [0.25, 0], [-0.25, 0], [-0.25, 0.5], [-1, 0.5]]},
@@ -255,6 +256,12 @@ TEST(CaseErrors, ABlockInANotchHasOneNamePerCorner) {
   for (size_t k = 0; k < joints.size(); ++k)
     for (int corner : {0, 1}) names.insert(corner_name(c, joints[k].i, joints[k].j, corner, nth[k]));
   EXPECT_EQ(names, (std::set<std::string>{"base/post:A", "base/post:B", "base/post:C", "base/post:D", "base/post:E", "base/post:F"}));
+  // The floor (normal up) is the second joint: C at (0.25, 0), D at (-0.25, 0).
+  ASSERT_NEAR(joints[1].normal.y(), 1.0, 1e-12);
+  EXPECT_EQ(corner_name(c, joints[1].i, joints[1].j, 0, nth[1]), "base/post:C");
+  EXPECT_EQ(joints[1].a, Vec2(0.25, 0.0));
+  EXPECT_EQ(joint_name(c, joints[1].i, joints[1].j, nth[1]), "base/post:CD");
+  EXPECT_EQ(joint_name(c, joints[0].i, joints[0].j, nth[0]), "base/post");
   EXPECT_EQ(corner_letter(0, 13), "A14");  // past Z
   EXPECT_EQ(corner_letter(1, 13), "B14");
 }

@@ -90,16 +90,29 @@ TEST(PrdHold, ACornerNoJointHasIsRefusedNamingTheField) {
   EXPECT_NE(err.find("v3/nowhere:A"), std::string::npos) << err;
   // Not a corner name at all: the case loader refuses it.
   EXPECT_THROW(with_option(load_case(kArch), "prd.hold_closed", std::vector<std::string>{"v3"}), CaseError);
+  // One '/', one ':', then a letter, or A or B and a joint's number past the letters (the 14th on).
+  for (const char* bad : {"a/b/c:A", "a:x/b:A", "a/b:c:A", "a/b:A0", "a/b:B13", "a/b:a", "a/b:"})
+    EXPECT_THROW(with_option(load_case(kArch), "prd.hold_closed", std::vector<std::string>{bad}), CaseError) << bad;
+  for (const char* good : {"v3/v4:A", "v3/v4:C", "v3/v4:Z", "v3/v4:A14", "v3/v4:B140"})
+    EXPECT_NO_THROW(with_option(load_case(kArch), "prd.hold_closed", std::vector<std::string>{good})) << good;
 }
 
-// Two blocks that meet at more than one joint (a post seated in a notch: the floor, then both
-// sides) name each joint's corners apart, so a hold holds the one corner it names.
+// Two blocks that meet at more than one joint (a post seated in a notch: its two sides and the
+// floor) name each joint's corners apart, so a hold holds the one corner it names.
 TEST(PrdHold, AHoldInANotchHoldsTheCornerItNames) {
   const Case seated = parse_case(R"({"format": "masonry-case/1", "name": "notch", "gravity": 9.81, "blocks": [
     {"id": "base", "support": true, "vertices": [[-1, -0.5], [1, -0.5], [1, 0.5], [0.25, 0.5], [0.25, 0], [-0.25, 0], [-0.25, 0.5], [-1, 0.5]]},
     {"id": "post", "density": 2000, "vertices": [[-0.25, 0], [0.25, 0], [0.25, 1], [-0.25, 1]]}],
     "motion": {"step": 0.01, "max_steps": 3, "supports": [{"block": "base", "rotation": 1, "about": [0, -0.5]}]}})",
                                  "notch.json");
+  // The joints in their order (detect_interfaces: by blocks, the normal's direction, then along
+  // the tangent): the right wall (A, B), the floor (C, D), the left wall (E, F).
+  const RunResult free = prd_run(seated, PrdSettings::from_case(seated));
+  ASSERT_EQ(free.joints.size(), 3u);
+  EXPECT_EQ(free.joints[0].a, Vec2(0.25, 0.5));
+  EXPECT_EQ(free.joints[1].a, Vec2(0.25, 0.0));  // the floor: C is its right corner
+  EXPECT_EQ(free.joints[1].b, Vec2(-0.25, 0.0));
+  EXPECT_EQ(free.joints[2].b, Vec2(-0.25, 0.5));
   for (const std::string corner : {"base/post:A", "base/post:C", "base/post:F"}) {
     const Case c = with_option(seated, "prd.hold_closed", std::vector<std::string>{corner});
     const RunResult r = prd_run(c, PrdSettings::from_case(c));

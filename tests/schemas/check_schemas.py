@@ -286,6 +286,9 @@ def main():
     refuses("case", dict(case, blocks=[{"id": "b", "vertices": [[0, 0], [1, 0], [1, 1]]}]), "a free block without density")
     for sep in "/:":
         refuses("case", dict(case, blocks=[dict(case["blocks"][0], id="a" + sep + "b")] + case["blocks"][1:]), "an id holding '" + sep + "'")
+    # hold_closed: a corner as corner_name writes it (the loader's is_joint_corner refuses these too)
+    for corner in ("a/b/c:A", "a:x/b:A", "a/b:c:A", "a/b:A0", "a/b:B13", "a/b:a"):
+        refuses("case", dict(case, prd=dict(case.get("prd", {}), hold_closed=[corner])), "hold_closed " + corner)
     cat = load(catalogue)
     bad = json.loads(json.dumps(cat))
     del bad["benchmarks"][0]["methods"]["prd"]["tolerance"]["why"]
