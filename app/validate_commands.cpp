@@ -69,23 +69,30 @@ struct RemovedAtExit {
 // A process that removes the temporary directory once this one has ended, however it ends:
 // stopped by Ctrl-C during masonry's own work between the solver's runs (the solver's wait
 // catches the signal and cleans up itself, nothing else does) or killed, no destructor runs.
-// It waits on a pipe whose only writer is this process (close-on-exec, so no solver holds it),
-// ignores the terminal's signals (Ctrl-C reaches the whole process group), and holds none of
-// the caller's streams. Without it (no pipe or fork) the ordinary ends still remove the directory.
+// It waits on a pipe whose only writer is this process (close-on-exec, so no solver holds it), in
+// a process group of its own (a signal to masonry's group, a terminal's Ctrl-C or a CI's kill,
+// does not reach it; the terminal's signals are blocked across the fork and then ignored), and
+// holds none of the caller's streams or descriptors. Called before any thread starts: the child
+// of a single-threaded process may allocate (remove_all). Without it (no pipe or fork) the
+// ordinary ends still remove the directory.
 void remove_when_this_process_ends(const std::string& dir) {
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) return;
+  sigset_t stops, before;
+  sigemptyset(&stops);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) sigaddset(&stops, sig);
+  sigprocmask(SIG_BLOCK, &stops, &before);
   const pid_t pid = fork();
-  if (pid < 0) {
-    close(fds[0]);
-    close(fds[1]);
-    return;
-  }
   if (pid == 0) {
+    setpgid(0, 0);
     for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) std::signal(sig, SIG_IGN);
-    close(fds[1]);
-    if (const int null = open("/dev/null", O_RDWR); null >= 0)
+    sigprocmask(SIG_SETMASK, &before, nullptr);
+    if (const int null = open("/dev/null", O_RDWR); null >= 0) {
       for (const int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO}) dup2(null, fd);
+      if (null > STDERR_FILENO) close(null);
+    }
+    close_range(STDERR_FILENO + 1, unsigned(fds[0]) - 1, 0);  // every inherited descriptor but the pipe's read end
+    close_range(unsigned(fds[0]) + 1, ~0U, 0);
     char ch;
     while (read(fds[0], &ch, 1) < 0 && errno == EINTR) {
     }
@@ -93,7 +100,9 @@ void remove_when_this_process_ends(const std::string& dir) {
     std::filesystem::remove_all(dir, ec);
     _exit(0);
   }
+  sigprocmask(SIG_SETMASK, &before, nullptr);
   close(fds[0]);  // the write end stays open until this process ends
+  if (pid < 0) close(fds[1]);
 }
 
 std::string command_line(const Opts& o) {

@@ -221,10 +221,11 @@ TEST(ValidateSolver, KilledLeavesNoTemporaryDirectory) {
   Scratch dir("validate-solver-killed");
   const std::filesystem::path pid_file = dir.path / "solver.pid", tmp = dir.path / "tmp3";
   std::filesystem::create_directories(tmp);
-  // SIGKILL to masonry alone after 2 s, while the solver sleeps (timeout(1) would signal its
-  // whole process group).
-  const int rc = test::run("TMPDIR=" + tmp.string() + " " + kExe + " validate --quiet --only block-topples --solver 'echo $$ > " + pid_file.string() +
-                           "; exec sleep 30' >/dev/null 2>&1 & p=$!; sleep 2; kill -9 $p; wait $p");
+  // SIGKILL to masonry's whole process group (setsid: masonry leads it) once the solver sleeps:
+  // the helper, in a group of its own, outlives it (the solver too, in its own).
+  const int rc = test::run("TMPDIR=" + tmp.string() + " setsid " + kExe + " validate --quiet --only block-topples --solver 'echo $$ > " + pid_file.string() +
+                           "; exec sleep 30' >/dev/null 2>&1 & p=$!; for i in $(seq 100); do [ -s " + pid_file.string() +
+                           " ] && break; sleep 0.1; done; kill -9 -$p; wait $p");
   EXPECT_NE(rc, 0);
   ASSERT_TRUE(std::filesystem::exists(pid_file));
   // A killed masonry cannot kill its solver: this test does.
