@@ -31,19 +31,23 @@ std::string hinges_at_collapse(const Case& c, const RunResult& r) {
     }
   }
   if (labels.empty()) {
-    // A DEM that collapsed: the hinges of the state its failed hold was called a collapse in
-    // (compare/ reads its collapse mechanism there too). At its last equilibrium a toppling
-    // block's heel may still be within the elastic gaps, and the run grouped with the sliding
-    // ones (a stack on a tilting slab, friction 17.5 and 20 degrees: "none" beside the toppling
-    // runs at 12.5 and 15). Otherwise the hinges of the last equilibrium (a PRD whose mechanism LP
-    // found none, a DEM without a collapse). A DEM's are measured beyond the gaps it settled
-    // with (compare/'s rule: elastic redistribution opens gaps that wide anywhere).
+    // The hinges of the last equilibrium (a PRD whose mechanism LP found none, a DEM); a DEM's
+    // beyond the gaps it settled with (compare/'s rule: elastic redistribution opens gaps that
+    // wide anywhere).
     const bool dem = known_method(r) == Method::dem;
-    const std::optional<StepRecord> failed = dem ? collapse_state(r) : std::nullopt;
     const std::vector<const StepRecord*> stable = stable_records(r);
-    const StepRecord* at = failed ? &*failed : stable.empty() ? nullptr : stable.back();
-    if (!at) return "";
-    for (const Hinge& h : hinges_of(c, r, *at, dem ? settled_gap(r) : 0.0)) labels.push_back(h.label);
+    if (!stable.empty())
+      for (const Hinge& h : hinges_of(c, r, *stable.back(), dem ? settled_gap(r) : 0.0)) labels.push_back(h.label);
+    // A DEM that collapsed with no hinge open at its last equilibrium: those of the state its
+    // failed hold was called a collapse in (compare/ reads its collapse mechanism there too). A
+    // toppling block's heel may still be within the elastic gaps at its last equilibrium, and
+    // the run read as a sliding one (a stack on a tilting slab, friction 17.5 and 20 degrees:
+    // "none" beside the toppling runs at 12.5 and 15). Only then: the failed state is the fall
+    // (a block drifted 2% of the scene), whose later hinges a structure with hinges already open
+    // at its last equilibrium would add to its mechanism's.
+    if (labels.empty() && dem)
+      if (const std::optional<StepRecord> failed = collapse_state(r))
+        for (const Hinge& h : hinges_of(c, r, *failed, settled_gap(r))) labels.push_back(h.label);
   }
   std::string s;
   for (const std::string& l : labels) s += (s.empty() ? "" : " ") + l;

@@ -405,7 +405,8 @@ void sensitivity_section(Document& d, const SweepPlan& p, const SweepTable& t, c
     if (!m.mechanisms.empty()) {
       d.paragraph({"Collapse mechanisms: the " + std::string(sens.sampled ? "samples" : "runs") +
                    " grouped by their hinges at collapse (PRD: the corners its collapse mechanism opens, a hinge named by the corner it turns "
-                   "about; DEM: the hinges, beyond its settled gaps, of the state its failed hold was called a collapse in), then by the members those hinges lie in (block ids "
+                   "about; DEM: the hinges of its last equilibrium beyond its settled gaps, or where it has none, of the state its failed hold was "
+                   "called a collapse in), then by the members those hinges lie in (block ids "
                    "without their voussoir or course number), which geometry that moves a hinge by a voussoir keeps."});
       // Hinge sets that group nothing (each its own, as on the cathedral, whose courses and
       // voussoirs renumber with the geometry) are left to sweep.csv's `hinges` column.

@@ -178,9 +178,9 @@ SweepRow row_from_json(const nlohmann::json& j);
 // With `keep`, the row carries the run's files.
 SweepRow execute_run(const SweepPlan& p, const SweepRun& r, bool keep = false);
 // The hinges at collapse of a finished run of case c (sweep/mechanism.cpp): PRD's collapse
-// mechanism where it located one, a DEM's hinges in the state its failed hold was called a
-// collapse in, else the hinges of the last equilibrium (a DEM's measured beyond its settled
-// gaps, as compare/ does).
+// mechanism where it located one, else the hinges of the last equilibrium (a DEM's measured
+// beyond its settled gaps, as compare/ does), and for a DEM with none there that collapsed,
+// those of the state its failed hold was called a collapse in.
 std::string hinges_at_collapse(const Case& c, const RunResult& r);
 // The labels of hinges_at_collapse's string, one per hinge (ids may hold spaces, never ':').
 std::vector<std::string> hinge_labels(const std::string& hinges);
