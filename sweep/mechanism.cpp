@@ -56,9 +56,9 @@ std::string hinges_at_collapse(const Case& c, const RunResult& r) {
 
 std::vector<std::string> hinge_labels(const std::string& hinges) {
   // Each label is BLOCK/BLOCK:A (a corner letter, model/interfaces.hpp) or :open (:CDopen), the
-  // labels joined by spaces. Ids may hold spaces
-  // but never ':' (model/case.cpp, id_fault), so a label ends at the word after its colon.
-  // One space between labels, and an id may begin with one: none is skipped but the separator.
+  // labels joined by one space. Ids may hold spaces (even begin with one) but never ':'
+  // (model/case.cpp, id_fault), so a label ends at the word after its colon, and only the one
+  // separating space is skipped.
   std::vector<std::string> out;
   size_t start = 0;
   while (start < hinges.size()) {
