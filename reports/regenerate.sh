@@ -4,6 +4,7 @@
 #
 #   bash reports/regenerate.sh            # runs PRD and DEM again (the cathedrals' DEM runs take 1-2.5 CPU minutes each, 2026-11-25)
 #   bash reports/regenerate.sh --render   # only redraws the reports from the results already there
+#                                         # (not in git: a full run writes them, reports/README.md)
 #
 # Uses build/app/masonry (override with MASONRY=path). A case that exceeds a limit still gets
 # its report (which says which limit); the script lists those cases and exits 1.
@@ -28,6 +29,14 @@ declare -A extra=(
   [cathedral-settlement-rotation]=""
 )
 failed=()
+if [ $render = 1 ]; then
+  for d in reports/compare-*/prd reports/compare-*/dem; do
+    [ -f "$d/results.json.xz" ] || [ -f "$d/results.json" ] || {
+      echo "regenerate: --render needs the runs, and $d has none (they are not in git): run bash reports/regenerate.sh first" >&2
+      exit 2
+    }
+  done
+fi
 # Compresses the runs of a comparison directory (every results.json under it).
 pack() { find "$1" -mindepth 2 -maxdepth 2 -name results.json -exec xz -9e -f {} \; ; }
 # A report's notes.txt, where there is one, says in mechanical terms why a check fails.

@@ -8,8 +8,9 @@
 # (default out/tradeoff/, not checked in); reports/ keeps only the csv, json, md, html and svg.
 # Times (2026-11-25): the pointed arch's PRD plan takes seconds and its DEM plan about a CPU
 # minute (the reference, full stiffness at 0.5 mm, 21 s); the cathedral's PRD plan seconds, its
-# eight DEM settings 1-3 CPU minutes each, about 16 in all (its reference is the committed
-# 2.3-minute default run of reports/compare-cathedral-settlement/dem/, read back). The DEM
+# eight DEM settings 1-3 CPU minutes each, about 16 in all (its reference is the
+# 2.3-minute default run of reports/compare-cathedral-settlement/dem/, read back: not in git, so
+# bash reports/regenerate.sh writes it first). The DEM
 # settings are independent runs: with the case files of `masonry tradeoff ... --dry-run`,
 # `masonry dem RUNS/<id>/case.json --out RUNS/<id>` can run them side by side first (--resume
 # then reads their times back from results.json, marked wall, though a DEM run's is CPU time). --resume reuses every finished run, so an
