@@ -79,8 +79,7 @@ std::string joint_name(const Case& c, int i, int j, int nth) {
 }
 
 std::string corner_name(const Case& c, int i, int j, int corner, int nth) {
-  const auto id = [&](int b) { return b >= 0 && b < int(c.blocks.size()) ? c.blocks[b].id : std::string("?"); };
-  return id(i) + "/" + id(j) + ":" + corner_letter(corner, nth);
+  return joint_name(c, i, j) + ":" + corner_letter(corner, nth);
 }
 
 std::vector<Interface> detect_interfaces(const Case& c, double tol) {
