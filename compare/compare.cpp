@@ -537,6 +537,8 @@ Comparison compare_runs(const Case& c, const RunResult& a, const RunResult& b, c
     k.ring_shift = o.ring_shift;
     k.sliding = slip_check(c, a, b, k.d_max, std::max(k.hinge_gap, c.prd.contact_tolerance));
   }
+  k.jumps_a = jumps(c, a);  // a run without poses has none to read
+  k.jumps_b = jumps(c, b);
   if (!ra.empty() && !rb.empty() && k.hinges_skipped.empty()) {
     std::set<double> done;
     for (double f : o.hinge_fractions) {
@@ -668,6 +670,12 @@ ojson to_json(const Comparison& k) {
                          {"largest_a", one(k.sliding->largest_a)},
                          {"largest_b", one(k.sliding->largest_b)}};
   }
+  const auto jumps_json = [](const std::vector<Jump>& v) {
+    ojson out = ojson::array();
+    for (const Jump& x : v) out.push_back({{"from", json_number(x.from)}, {"to", json_number(x.to)}, {"drift", json_number(x.drift)}, {"block", x.block}});
+    return out;
+  };
+  j["jumps"] = ojson{{"a", jumps_json(k.jumps_a)}, {"b", jumps_json(k.jumps_b)}};
   j["timing"] = {{"a_s", json_number(k.a.time_s)}, {"b_s", json_number(k.b.time_s)}, {"ratio", json_number(k.time_ratio)}};
   return j;
 }

@@ -139,6 +139,21 @@ struct SlipCheck {
 // A joint whose corner in contact opened by more than min_gap came apart, and is left out.
 SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, double to, double min_gap);
 
+// Where a run's structure jumped between two consecutive stable records (compare/README.md,
+// "Jumps"; compare/jumps.cpp): a free block moved more than kJumpRatio times as far as the
+// supports carried any point (support_travel_per_d x the change of d), and more than kJumpFloor of
+// the scene: a snap through to another equilibrium that the run followed. A mechanism carries a
+// block a few times the supports' travel at most (up to 3.3 times over the PRD steps of the
+// standard scenes and the zoo); the pointed arch's hinge passing near d = 0.1 m moves one 9.5 times.
+constexpr double kJumpRatio = 5.0;
+constexpr double kJumpFloor = 1e-3;
+struct Jump {
+  double from = 0.0, to = 0.0;  // d of the two records (m, or rad where the supports only turn)
+  double drift = 0.0;           // m, the largest free block displacement between them
+  std::string block;            // the block that moved most (case text: escape before display)
+};
+std::vector<Jump> jumps(const Case& c, const RunResult& r);
+
 // Horizontal (H = Fx / W) and vertical (V = Fy / W) reaction of one support against d, for both
 // runs, on the common d grid.
 struct SupportCurve {
@@ -175,6 +190,7 @@ struct Comparison {
   std::vector<HingeCheck> hinges;
   std::vector<MotionCheck> motion;  // mechanism agreement per checked interval
   std::optional<SlipCheck> sliding;  // how far the joints slid over the common range (with the mechanism checks)
+  std::vector<Jump> jumps_a, jumps_b;  // each run's snaps through, over its own stable records
   int ring_shift = 0;               // the CompareOptions::ring_shift it was measured with
   std::string d_unit = "m";         // the path parameter's SI unit (path_unit): "m" or "rad"
   double time_ratio = 0.0;          // time_b / time_a (NaN when time_a is 0)

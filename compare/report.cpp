@@ -380,6 +380,44 @@ std::vector<Item> settled_cracks(const Report& r) {
 
 // The mechanism checks: per interval of d, how alike the two runs' joint motions are, and where
 // they differ most (compare/README.md, "Mechanism agreement").
+// The runs' jumps (compare/README.md, "Jumps"), and where one run's collapse sits at the other's
+// jump: the same snap through, which that run read as a collapse while the other went on.
+void jumps_paragraph(Document& d, const Comparison& cmp, const std::string& unit) {
+  if (cmp.jumps_a.empty() && cmp.jumps_b.empty()) return;
+  const auto list = [&](const std::vector<Jump>& v) {
+    if (v.empty()) return std::string("none");
+    std::string out;
+    for (size_t k = 0; k < v.size(); ++k) {
+      if (k == 3) {
+        out += " and " + std::to_string(v.size() - 3) + " more";
+        break;
+      }
+      out += (k ? "; " : "") + mm(v[k].from, 1) + " to " + mm(v[k].to, 1) + " " + unit + ", " + v[k].block + " " + mm(v[k].drift, 1) + " mm";
+    }
+    return out;
+  };
+  std::string text = "Jumps: where a run's structure snapped through between two of its records (a free block moving more than " +
+                     fmt::number(kJumpRatio, "%g", kJumpRatio) + " times as far as the supports carried any point, and more than " +
+                     fmt::number(kJumpFloor, "%g", kJumpFloor) + " of the scene): " + cmp.a.label + " " + list(cmp.jumps_a) + "; " + cmp.b.label +
+                     " " + list(cmp.jumps_b) + ".";
+  // A collapse near the other run's jump (within two of its own steps or 2% of d: each method
+  // meets a snap where its own path brings it there), which the other went through.
+  const auto at_jump = [&](const RunSummary& x, const RunSummary& other, const std::vector<Jump>& v) {
+    if (!x.collapsed || !(other.capacity > x.capacity)) return;
+    for (const Jump& j : v) {
+      const double near = std::max(2 * x.step, 0.02 * std::abs(j.to));
+      if (x.capacity < j.from - near || x.capacity > j.to + near) continue;
+      text += " " + x.label + " collapsed at " + mm(x.capacity, 1) + " " + unit + ", near " + other.label + "'s jump at " + mm(j.from, 1) + " to " +
+              mm(j.to, 1) + " " + unit + ", which " + other.label + " went through: where it is the same snap, " + x.label +
+              " took it for a collapse (dem/README.md, \"Protocol\", stage 6, on the DEM's own reading of one).";
+      return;
+    }
+  };
+  at_jump(cmp.a, cmp.b, cmp.jumps_b);
+  at_jump(cmp.b, cmp.a, cmp.jumps_a);
+  d.paragraph({text});
+}
+
 void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
   const std::string unit = d_unit(r);
   d.heading(3, {"Mechanism agreement"});
@@ -441,6 +479,7 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
                  "answer for different mechanisms; a DEM whose joints slid where PRD's mechanism turns about hinges and its friction "
                  "suffices may have joints stiff against the weights (dem/README.md, \"Contact damping\")."});
   }
+  jumps_paragraph(d, cmp, unit);
 }
 
 void comparison_section(Document& d, const Report& r, size_t k, const std::vector<Figure>& figures, bool page) {

@@ -248,6 +248,12 @@ ojson to_json(const RunResult& r, const Case& c) {
     for (const SettledCreep& f : r.settled_creeps) u.push_back({{"d", json_number(f.d)}, {"holds", f.holds}, {"time", json_number(f.time)}});
     j["settled_creeps"] = u;
   }
+  if (!r.settled_snaps.empty()) {
+    ojson u = ojson::array();
+    for (const SettledSnap& f : r.settled_snaps)
+      u.push_back({{"d", json_number(f.d)}, {"from", json_number(f.from)}, {"drift", json_number(f.drift)}, {"time", json_number(f.time)}});
+    j["settled_snaps"] = u;
+  }
   if (r.sliding) {
     const SlidingSummary& x = *r.sliding;
     ojson o = ojson::object();

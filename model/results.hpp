@@ -193,7 +193,7 @@ struct BracketTrial {
   std::string end;  // how its hold ended: "equilibrium", "collapse", "creep" or "undecided"
   long long cycles = 0;
   bool confirm = false;  // the confirming hold of DemSettings::confirm_collapse
-  bool followed = false;  // the bracket's creeping upper end held on (dem_run's follow stage)
+  bool followed = false;  // the bracket's upper end held on: a creep (the follow stage) or a collapse (the landing stage)
 };
 struct CollapseBracket {
   double equilibrium = 0.0, failed = 0.0, width = 0.0;  // m
@@ -209,6 +209,16 @@ struct SettledCreep {
   double d = 0.0;        // m
   int holds = 0;         // holds it was held on for
   double time = 0.0;     // s of model time those holds took
+};
+
+// A collapse at the collapse bracket's upper end that came to rest when held on (dem_run's
+// landing stage): the structure snapped through, from the equilibrium at `from` to another
+// branch at d, and the run went on.
+struct SettledSnap {
+  double d = 0.0;      // m (rad where the supports only turn), where it landed
+  double from = 0.0;   // the last equilibrium before it, same unit
+  double drift = 0.0;  // m, the largest block displacement between the two equilibria
+  double time = 0.0;   // s of model time of the hold it landed in
 };
 
 struct RunResult {
@@ -235,6 +245,7 @@ struct RunResult {
   bool limit_point = false;
   std::vector<UnconfirmedFailure> unconfirmed_failures;  // DEM (confirm_collapse)
   std::vector<SettledCreep> settled_creeps;              // DEM (the follow stage)
+  std::vector<SettledSnap> settled_snaps;                // DEM (the landing stage)
 };
 
 // The method that made a run, where it is one of ours (an outside solver's run: nothing), and

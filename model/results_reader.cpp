@@ -339,6 +339,13 @@ void read_dem_fields(const Reader& in, const ojson& j, RunResult& r) {
     r.settled_creeps.push_back({in.maybe(in.need(sc[k], w, "d"), w, "d"), static_cast<int>(in.integer(sc[k], w, "holds", 0)),
                                 in.maybe(in.need(sc[k], w, "time"), w, "time")});
   }
+  const ojson& sn = in.array(j, "results", "settled_snaps");
+  for (size_t k = 0; k < sn.size(); ++k) {
+    const std::string w = item("settled_snaps", k);
+    in.only(sn[k], w, {"d", "from", "drift", "time"});
+    r.settled_snaps.push_back({in.maybe(in.need(sn[k], w, "d"), w, "d"), in.maybe(in.need(sn[k], w, "from"), w, "from"),
+                               in.maybe(in.need(sn[k], w, "drift"), w, "drift"), in.maybe(in.need(sn[k], w, "time"), w, "time")});
+  }
 }
 
 std::optional<SlidingSummary> read_sliding(const Reader& in, const ojson& x) {
@@ -422,7 +429,7 @@ RunResult parse_results(const std::string& text, const Case& c, const std::strin
                  "events",       "collapse",
                  "wall_s",       "collapse_bracket",
                  "limit_point",  "unconfirmed_failures",
-                 "settled_creeps", "sliding"});
+                 "settled_creeps", "settled_snaps", "sliding"});
   const std::string format = in.text(in.need(j, w, "format"), w, "format");
   if (format != "masonry-results/1") in.fail(w, "field 'format' must be \"masonry-results/1\", not \"" + printable(format) + "\"");
   RunResult r;

@@ -234,6 +234,51 @@ def many_sided_block():
                 0.005, 200, dem={"friction_angle": 50.0})
 
 
+def pointed_arch_settling_out():
+    # A two-centred pointed arch (Rcirc 1 m, the centres 0.3 m off the axis: Rpoint 1.3 m;
+    # 0.15 m thick, 150 degrees between the springing joints, 15 voussoirs with a keystone) on
+    # springing blocks cut to its joints; the right one's foundation settles outwards, 0.6 m out
+    # and 0.8 m down per m of d. Near d = 0.37 m a hinge passes to another joint: PRD moves a block
+    # 46 mm in one 1 mm step (2.2% of the scene), and the arch stands on to 0.58 m (dem/README.md,
+    # "Protocol", stage 6: the landing).
+    rc, e, t, n = 1.0, 0.3, 0.15, 15
+    rp = rc + e
+    ri, re = rp - t / 2, rp + t / 2
+    gamma = math.asin(e / rp)
+    phi0 = math.pi / 2 + math.radians(150) / 2
+    dphi = 2 * (math.radians(150) / 2 - gamma) / n
+
+    def corner(k, r):
+        a = phi0 - k * dphi
+        if 2 * k < n:
+            return (e + r * math.cos(a), r * math.sin(a))
+        return (-e + r * math.cos(a - 2 * gamma), r * math.sin(a - 2 * gamma))
+
+    def springing(bid, k):
+        a, b = corner(k, ri), corner(k, re)
+        base = min(a[1], b[1]) - t
+        pts = [a, b, (b[0], base), (a[0], base)]
+        area = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]))
+        return block(bid, pts if area > 0 else pts[::-1], support=True)
+
+    blocks = [springing("left", 0)]
+    for k in range(n):
+        if 2 * k + 1 == n:  # the keystone: the extrados apex a vertex, the intrados a chord
+            pts = [corner(k, ri), corner(k + 1, ri), corner(k + 1, re), (0.0, math.sqrt(re * re - e * e)), corner(k, re)]
+        else:
+            pts = [corner(k, ri), corner(k + 1, ri), corner(k + 1, re), corner(k, re)]
+        area = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]))
+        blocks.append(block(f"v{k}", pts if area > 0 else pts[::-1]))
+    blocks.append(springing("right", n))
+    right = blocks[-1]["vertices"]
+    about = [sum(x for x, _ in right) / 4, sum(y for _, y in right) / 4]
+    return case("pointed arch, support settling outwards",
+                "A two-centred pointed arch (Rcirc 1 m, eccentricity 0.3 m, 0.15 m thick, 150 degrees, 15 voussoirs) on "
+                "springing blocks; the right one's foundation moves 0.6 mm out and 0.8 mm down per step.",
+                blocks, [{"block": "right", "translation": [0.6, -0.8], "rotation": 0.0, "about": about}],
+                0.001, 700)
+
+
 ZOO = {
     "semicircular-arch-on-piers": semicircular_arch_on_piers,
     "segmental-arch-abutment": segmental_arch_abutment,
@@ -243,6 +288,7 @@ ZOO = {
     "wall-with-opening": wall_with_opening,
     "stack-on-turning-base": stack_on_turning_base,
     "many-sided-block": many_sided_block,
+    "pointed-arch-settling-out": pointed_arch_settling_out,
 }
 
 # Which zoo members validate --quick runs (the DEM takes a few seconds on each) and the closed

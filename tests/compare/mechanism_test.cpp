@@ -15,6 +15,7 @@
 #include "common.hpp"
 #include "dem/util.hpp"
 #include "compare/compare.hpp"
+#include "compare/report.hpp"
 #include "dem/dem.hpp"
 #include "prd/prd.hpp"
 
@@ -373,6 +374,48 @@ TEST(Sliding, ASlideIsItsLengthAndAHingeNone) {
   const nlohmann::ordered_json j = to_json(k);
   EXPECT_NEAR(j["sliding"]["largest_a"]["a"].get<double>(), 0.002, 1e-12);
   EXPECT_EQ(j["sliding"]["largest_b"]["joint"], "ground/block");
+}
+
+// Jumps (compare/README.md, "Jumps"): between two records one step apart (1 degree of the
+// tilting block's slab, whose farthest point travels the scene's size per radian), the block
+// moved by ten times that travel is a jump, by twice it none; and where one run collapses at the
+// other's jump, which the other went through, the report says so.
+TEST(Jumps, AMotionFarBeyondTheSupportsTravelIsAJump) {
+  const Case c = load("tilting-block");
+  RunResult base = prd(with_option(c, "motion.max_steps", 2));
+  ASSERT_GE(base.steps.size(), 3u);
+  base.steps.resize(3);
+  const double travel = support_travel_per_d(c) * (base.steps[1].d - base.steps[0].d);
+  const auto moved_by = [&](double k) {
+    RunResult r = base;
+    r.steps[1].poses = r.steps[0].poses;
+    r.steps[2].poses = r.steps[0].poses;
+    r.steps[2].poses[1].x += k * travel;  // the block, between the second and third records
+    r.capacity = r.steps[2].d;
+    r.status = RunStatus::max_steps;
+    return r;
+  };
+  const RunResult jumped = moved_by(10), crept = moved_by(2);
+  const std::vector<Jump> j = jumps(c, jumped);
+  ASSERT_EQ(j.size(), 1u);
+  EXPECT_EQ(j[0].block, "block");
+  EXPECT_NEAR(j[0].drift, 10 * travel, 1e-12);
+  EXPECT_DOUBLE_EQ(j[0].from, base.steps[1].d);
+  EXPECT_DOUBLE_EQ(j[0].to, base.steps[2].d);
+  EXPECT_TRUE(jumps(c, crept).empty());
+  // The other run collapsed at the first record: near the jump, which the first went through.
+  RunResult fell = crept;
+  fell.steps.resize(2);
+  fell.capacity = fell.steps[1].d;
+  fell.collapsed = true;
+  fell.status = RunStatus::collapse;
+  const Comparison k = compare_runs(c, jumped, fell);
+  ASSERT_EQ(k.jumps_a.size(), 1u);
+  EXPECT_TRUE(k.jumps_b.empty());
+  EXPECT_EQ(to_json(k)["jumps"]["a"].size(), 1u);
+  const std::string md = report_markdown(make_report(c, {{"PRD", &jumped, "a"}, {"other", &fell, "b"}}), {});
+  EXPECT_NE(md.find("Jumps: "), std::string::npos);
+  EXPECT_NE(md.find("other collapsed at 17.5 mrad, near PRD's jump at 17.5 to 34.9 mrad, which PRD went through"), std::string::npos) << md;
 }
 
 TEST(Sliding, ADemBlockOnATiltingSlabShearsElasticallyAndPrdRidesRigidly) {
