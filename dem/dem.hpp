@@ -103,6 +103,9 @@ class DemModel {
   // kinetic + spring energy + dissipation equals it, to within the scheme's error.
   double energy_input() const;
   int contact_points() const;  // manifold points in contact
+  // Whether two blocks that share none of `joints` touch (some manifold point in contact): a
+  // part resting on a face it was not cut against (dem_run's landing stage).
+  bool touches_off_joints(const std::vector<Interface>& joints) const;
   double max_overlap() const;  // m
   long long broadphase_rebuilds() const;
 

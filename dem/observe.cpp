@@ -13,6 +13,16 @@ namespace masonry {
 
 using namespace dem_detail;
 
+bool DemModel::touches_off_joints(const std::vector<Interface>& joints) const {
+  std::vector<std::pair<int, int>> cut;  // the joints' block pairs, lower index first
+  const auto key = [](int a, int b) { return std::pair<int, int>(std::min(a, b), std::max(a, b)); };
+  for (const Interface& J : joints) cut.push_back(key(J.i, J.j));
+  std::sort(cut.begin(), cut.end());
+  for (const Pair& pr : p_->pairs)
+    if (pr.n > 0 && !std::binary_search(cut.begin(), cut.end(), key(pr.ba, pr.bb))) return true;
+  return false;
+}
+
 double DemModel::kn() const { return p_->kn; }
 double DemModel::ks() const { return p_->ks; }
 double DemModel::critical_dt() const { return p_->dt_crit; }

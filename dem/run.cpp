@@ -367,8 +367,8 @@ bool follow(Run& u, Failure& f) {
 // limit of 0.4 m). So a collapse is a drift of collapse_drift that does not come to rest within
 // another collapse_drift: the failed state is held on, and only a drift of collapse_drift from
 // there calls the collapse (not the kinetic energy's rise, nor the early reading: a snap gains
-// energy and speeds up before it lands, as the follow stage's hinges do). Where it settles, the
-// structure stands on the other branch: recorded (settled_snaps), and the increments go on from
+// energy and speeds up before it lands, as the follow stage's hinges do). Where it settles with
+// every contact at a joint of the case, the structure stands on the other branch: recorded (settled_snaps), and the increments go on from
 // there, off the grid. Otherwise the collapse stands, with the state the bracket found. A failure
 // during the move is not held on: its supports stopped short of f.d. Whether the run goes on.
 bool land(Run& u, Failure& f) {
@@ -383,7 +383,10 @@ bool land(Run& u, Failure& f) {
   u.lim.read_early = true;
   const long long cycles = u.m.cycles() - c0;
   f.trials.push_back({f.d, dem::hold_end_name(h.end), cycles, false, true});
-  if (h.end != HoldEnd::equilibrium) return false;
+  // A snap passes along the structure's own joints (a hinge closes, another opens), as PRD's
+  // step does, which keeps contact only at the joints it started from; a part that comes to rest
+  // on a face it was not cut against has fallen there.
+  if (h.end != HoldEnd::equilibrium || u.m.touches_off_joints(u.joints)) return false;
   u.r.settled_snaps.push_back({f.d, u.d_eq, dem::largest_distance(u.eq_positions, dem::positions(u.m, u.c), u.c), h.time});
   f.attempt.hold = h;  // the record counts the whole attempt's cycles; its hold is the one that settled
   f.attempt.cycles += cycles;

@@ -317,6 +317,29 @@ TEST(DemBracket, ASnapLongerThanTheDriftLimitLandsAndTheRunGoesOn) {
   EXPECT_GE(s.from, s.d - c.motion.step);
 }
 
+// A fall is not a snap: a part that comes to rest on a face it was not cut against has fallen.
+// The toppling block with a post 5 cm beside its downhill face (a second support turning with the
+// slab): past atan(b/h) it falls against the post, its centroid 28 mm from where it stood (over
+// the 20 mm drift limit, under twice it), and held on it would rest there; the landing stage takes
+// no rest that touches outside the case's joints, so the run collapses at atan(b/h), as PRD does
+// (the post is no joint of it).
+TEST(DemBracket, ABlockFallenAgainstAPostIsACollapseNotALanding) {
+  const double b = 0.2, h = 0.4, gap = 0.05;
+  Case c = test::tilt_case(b, h, 35);
+  c.blocks.insert(c.blocks.begin() + 1, test::rect("post", -b / 2 - gap - 0.05, 0.0, -b / 2 - gap, 0.5, 0.0, true));
+  SupportMotion post = c.motion.supports[0];
+  post.block = 1;
+  c.motion.supports.push_back(post);
+  c.motion.max_steps = 40;
+  const RunResult r = test::tilt_run(c);
+  ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
+  EXPECT_TRUE(r.settled_snaps.empty());
+  const double topple = std::atan(b / h);
+  EXPECT_LE(r.capacity, topple + 2 * tipping_resolution(b, h));
+  EXPECT_GT(r.capacity, topple - 0.1 * kDeg);
+  EXPECT_NEAR(prd_run(c, PrdSettings::from_case(c)).capacity, topple, c.motion.step);
+}
+
 // A collapse that happens during a move is a collapse. With damping 0.6 and a quarter of the
 // default kinetic ratio, the support tilts so slowly that the block topples and lands on its side
 // within one move; the hold then found the fallen block at rest and counted it as an equilibrium,
