@@ -141,7 +141,7 @@ SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, doub
 
 // Where a run's structure jumped between two consecutive stable records (compare/README.md,
 // "Jumps"; compare/jumps.cpp): a free block moved more than kJumpRatio times as far as the
-// supports carried any point (support_travel_per_d x the change of d), and more than kJumpFloor of
+// supports carried any point (path_travel_per_d x the change of d), and more than kJumpFloor of
 // the scene: a snap through to another equilibrium that the run followed. A mechanism carries a
 // block a few times the supports' travel at most (up to 3.3 times over the PRD steps of the
 // standard scenes and the zoo); the pointed arch's hinge passing near d = 0.1 m moves one 9.5 times.

@@ -15,7 +15,7 @@ namespace masonry {
 std::vector<Jump> jumps(const Case& c, const RunResult& r) {
   std::vector<Jump> out;
   const std::vector<const StepRecord*> recs = stable_records(r);
-  const double travel = support_travel_per_d(c);  // m of support point travel per unit of d
+  const double travel = path_travel_per_d(c);  // m of support point travel per unit of d
   const double floor = kJumpFloor * scene_size(c);
   for (size_t k = 1; k < recs.size(); ++k) {
     const StepRecord &p = *recs[k - 1], &q = *recs[k];

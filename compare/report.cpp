@@ -378,8 +378,6 @@ std::vector<Item> settled_cracks(const Report& r) {
   return items;
 }
 
-// The mechanism checks: per interval of d, how alike the two runs' joint motions are, and where
-// they differ most (compare/README.md, "Mechanism agreement").
 // The runs' jumps (compare/README.md, "Jumps"), and where one run's collapse sits at the other's
 // jump: the same snap through, which that run read as a collapse while the other went on.
 void jumps_paragraph(Document& d, const Comparison& cmp, const std::string& unit) {
@@ -401,12 +399,14 @@ void jumps_paragraph(Document& d, const Comparison& cmp, const std::string& unit
                      fmt::number(kJumpFloor, "%g", kJumpFloor) + " of the scene): " + cmp.a.label + " " + list(cmp.jumps_a) + "; " + cmp.b.label +
                      " " + list(cmp.jumps_b) + ".";
   // A collapse near the other run's jump (within two of its own steps or 2% of d: each method
-  // meets a snap where its own path brings it there), which the other went through.
+  // meets a snap where its own path brings it there), which the other went through: it stood
+  // on past the jump by more than that (PRD's last sub-step into a located limit is a jump too,
+  // and a run collapsing beside it met the same limit, not a snap).
   const auto at_jump = [&](const RunSummary& x, const RunSummary& other, const std::vector<Jump>& v) {
-    if (!x.collapsed || !(other.capacity > x.capacity)) return;
+    if (!x.collapsed) return;
     for (const Jump& j : v) {
       const double near = std::max(2 * x.step, 0.02 * std::abs(j.to));
-      if (x.capacity < j.from - near || x.capacity > j.to + near) continue;
+      if (x.capacity < j.from - near || x.capacity > j.to + near || !(other.capacity > j.to + near)) continue;
       text += " " + x.label + " collapsed at " + mm(x.capacity, 1) + " " + unit + ", near " + other.label + "'s jump at " + mm(j.from, 1) + " to " +
               mm(j.to, 1) + " " + unit + ", which " + other.label + " went through: where it is the same snap, " + x.label +
               " took it for a collapse (dem/README.md, \"Protocol\", stage 6, on the DEM's own reading of one).";
@@ -418,6 +418,8 @@ void jumps_paragraph(Document& d, const Comparison& cmp, const std::string& unit
   d.paragraph({text});
 }
 
+// The mechanism checks: per interval of d, how alike the two runs' joint motions are, and where
+// they differ most (compare/README.md, "Mechanism agreement").
 void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
   const std::string unit = d_unit(r);
   d.heading(3, {"Mechanism agreement"});

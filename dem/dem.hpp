@@ -103,9 +103,10 @@ class DemModel {
   // kinetic + spring energy + dissipation equals it, to within the scheme's error.
   double energy_input() const;
   int contact_points() const;  // manifold points in contact
-  // Whether two blocks that share none of `joints` touch (some manifold point in contact): a
-  // part resting on a face it was not cut against (dem_run's landing stage).
-  bool touches_off_joints(const std::vector<Interface>& joints) const;
+  // The block pairs (lower index first, sorted) with a contact point pressed together (positive
+  // overlap) that lies on none of their `joints` (a part resting on a face it was not cut
+  // against: dem_run's landing stage).
+  std::vector<std::pair<int, int>> off_joint_contacts(const std::vector<Interface>& joints) const;
   double max_overlap() const;  // m
   long long broadphase_rebuilds() const;
 

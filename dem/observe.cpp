@@ -13,14 +13,43 @@ namespace masonry {
 
 using namespace dem_detail;
 
-bool DemModel::touches_off_joints(const std::vector<Interface>& joints) const {
-  std::vector<std::pair<int, int>> cut;  // the joints' block pairs, lower index first
+std::vector<std::pair<int, int>> DemModel::off_joint_contacts(const std::vector<Interface>& joints) const {
+  const Impl& m = *p_;
   const auto key = [](int a, int b) { return std::pair<int, int>(std::min(a, b), std::max(a, b)); };
-  for (const Interface& J : joints) cut.push_back(key(J.i, J.j));
-  std::sort(cut.begin(), cut.end());
-  for (const Pair& pr : p_->pairs)
-    if (pr.n > 0 && !std::binary_search(cut.begin(), cut.end(), key(pr.ba, pr.bb))) return true;
-  return false;
+  std::map<std::pair<int, int>, std::vector<int>> joints_of;
+  for (size_t k = 0; k < joints.size(); ++k) joints_of[key(joints[k].i, joints[k].j)].push_back(static_cast<int>(k));
+  // A point is on a joint when it lies on the joint's segment as either block carries it: a
+  // joint that slid keeps its contact on the one copy or the other. Within a tenth of the broad
+  // phase's margin (half a percent of the smallest block): the overlaps are microns.
+  const double tol = 0.1 * m.margin;
+  const auto on_joint = [&](const Interface& J, const Vec2& x) {
+    for (const int b : {J.i, J.j}) {
+      const double c = std::cos(m.ang[b]), sn = std::sin(m.ang[b]);
+      const Vec2 a = m.pos[b] + rotate(J.a - m.origin - m.c0[b], c, sn), e = m.pos[b] + rotate(J.b - m.origin - m.c0[b], c, sn) - a;
+      const double t = std::clamp((x - a).dot(e) / std::max(e.squaredNorm(), 1e-300), 0.0, 1.0);
+      if ((a + t * e - x).norm() <= tol) return true;
+    }
+    return false;
+  };
+  std::vector<std::pair<int, int>> out;
+  for (const Pair& pr : m.pairs) {
+    const std::pair<int, int> k = key(pr.ba, pr.bb);
+    const auto it = joints_of.find(k);
+    for (int i = 0; i < pr.n; ++i) {
+      const PointState& ps = pr.pt[i];
+      if (!(ps.overlap > 0)) continue;  // a touch without force (corners meeting at zero gap)
+      bool on = false;
+      if (it != joints_of.end())
+        for (const int j : it->second) on = on || on_joint(joints[size_t(j)], ps.point);
+      if (!on) {
+        out.push_back(k);
+        break;
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 double DemModel::kn() const { return p_->kn; }

@@ -19,13 +19,10 @@ namespace {
 using dem::HoldEnd;
 using dem::HoldOutcome;
 
-// How far a support point travels per unit of d, m/m (model/case.hpp), 1 where no support moves.
-// The work the supports do on the structure over an increment is of the order of the weight
-// times this times the increment.
-double travel_per_d(const Case& c) {
-  const double v = support_travel_per_d(c);
-  return v > 0 ? v : 1.0;
-}
+// How far a support point travels per unit of d: path_travel_per_d (model/case.hpp). The work
+// the supports do on the structure over an increment is of the order of the weight times this
+// times the increment.
+double travel_per_d(const Case& c) { return path_travel_per_d(c); }
 
 // The servo's largest acceleration of a point carried by the supports, over gravity (dem::move):
 // a hundredth of gravity at the farthest point of the scene a support could carry (its
@@ -48,6 +45,12 @@ constexpr double kMoveAccel = 0.01;
 // limit point, not its verdict. The stiff segmental arch's hinge needed some 2.5 caps of the
 // default 30 s from rest to pass to another joint (74 s).
 constexpr int kFollowHolds = 8;
+
+// The most landings (land()) one run makes: each is a snap through of at least collapse_drift
+// from where its hold began, so a run that keeps landing is carried far from its geometry by a
+// string of them (a stick-slip ratchet would read so): past this many the next collapse stands.
+// A bound on the cost, not the verdict; no case here lands more than once.
+constexpr int kMaxLandings = 4;
 
 // One attempt to reach d1 from an equilibrium at d0: move, then hold.
 struct Attempt {
@@ -84,6 +87,10 @@ struct Run {
   DemSnapshot last_eq;  // the last equilibrium, at d_eq
   double d_eq = 0;
   std::vector<Vec2> eq_positions;  // the blocks' positions there (how far a snap carried them)
+  // Block pairs in contact there off the case's joints (DemModel::off_joint_contacts): a landing
+  // may keep these, not add to them.
+  std::vector<std::pair<int, int>> eq_off_joints;
+  int landings = 0;  // land()'s, so far
   int index = 0;  // of the next record (0: the settled initial configuration)
   // Increments follow the grid k x step until a failure that was not confirmed moves the last
   // equilibrium off it; from there they are step long, up to max_steps x step.
@@ -107,6 +114,7 @@ struct Failure {
   DemSnapshot state;  // the failed state
   std::vector<BracketTrial> trials;
   int followed = 0;  // holds the follow stage held the failed state on
+  std::string fallen_against;  // the landing came to rest against these blocks, which share no joint ("a/b")
 };
 
 // Every option as the case set it (model/options.cpp), then what the run derived from them where
@@ -171,6 +179,7 @@ void settled_at(Run& u, const Attempt& a, double d, bool bracketing) {
   ++u.r.stable_steps;
   u.last_eq = u.m.save();
   u.eq_positions = dem::positions(u.m, u.c);
+  u.eq_off_joints = u.m.off_joint_contacts(u.joints);
 }
 
 // One attempt to reach d1 from an equilibrium at d0: move, then hold (watching at least `watch`
@@ -226,6 +235,7 @@ bool settle(Run& u) {
   u.settled_gaps = u.m.corner_gaps(u.joints);
   u.last_eq = u.m.save();
   u.eq_positions = dem::positions(u.m, u.c);
+  u.eq_off_joints = u.m.off_joint_contacts(u.joints);
   u.d_eq = 0;
   return true;
 }
@@ -233,9 +243,11 @@ bool settle(Run& u) {
 // Stage 2: increments, each a move and a hold, from the last equilibrium, until one fails
 // (returned) or the path ends (nothing).
 std::optional<Failure> increments(Run& u) {
+  // Off the grid (after an unconfirmed failure or a landing) the last increment is what is left
+  // to the path's end, so a run that stands reaches d_end as PRD's does.
   const double d_end = u.s.max_steps * u.s.step;
-  while (u.on_grid ? u.k <= u.s.max_steps : u.d_eq + u.s.step <= d_end * (1 + 1e-12)) {
-    const double d1 = u.on_grid ? u.k * u.s.step : u.d_eq + u.s.step;
+  while (u.on_grid ? u.k <= u.s.max_steps : d_end - u.d_eq > 1e-9 * u.s.step) {
+    const double d1 = u.on_grid ? u.k * u.s.step : std::min(u.d_eq + u.s.step, d_end);
     ++u.k;
     const Attempt a = attempt(u, u.d_eq, d1);
     if (a.hold.end != HoldEnd::equilibrium) {
@@ -372,21 +384,33 @@ bool follow(Run& u, Failure& f) {
 // there, off the grid. Otherwise the collapse stands, with the state the bracket found. A failure
 // during the move is not held on: its supports stopped short of f.d. Whether the run goes on.
 bool land(Run& u, Failure& f) {
-  if (f.attempt.hold.end != HoldEnd::collapse || f.attempt.fell_in_move) return false;
+  if (f.attempt.hold.end != HoldEnd::collapse || f.attempt.fell_in_move || u.landings >= kMaxLandings) return false;
   u.m.restore(f.state);
   u.m.set_support_parameter(f.d);
   const std::vector<Vec2> here = dem::positions(u.m, u.c);
   u.lim.ke_collapse = INFINITY;
   u.lim.read_early = false;
   const long long c0 = u.m.cycles();
-  const HoldOutcome h = dem::hold(u.m, u.c, u.s, u.lim, 0, &here);
+  // As the confirming hold: a rest is taken only after four times as long as the failure took
+  // to show itself (at most the cap), since the motion may pass through rest at an unstable state.
+  const HoldOutcome h = dem::hold(u.m, u.c, u.s, u.lim, 4 * f.attempt.hold.cycles, &here);
   u.lim.read_early = true;
   const long long cycles = u.m.cycles() - c0;
-  f.trials.push_back({f.d, dem::hold_end_name(h.end), cycles, false, true});
   // A snap passes along the structure's own joints (a hinge closes, another opens), as PRD's
   // step does, which keeps contact only at the joints it started from; a part that comes to rest
-  // on a face it was not cut against has fallen there.
-  if (h.end != HoldEnd::equilibrium || u.m.touches_off_joints(u.joints)) return false;
+  // on a face it was not cut against, touching a block it was not touching at the last
+  // equilibrium, has fallen there: a collapse.
+  if (h.end == HoldEnd::equilibrium) {
+    for (const auto& p : u.m.off_joint_contacts(u.joints))
+      if (!std::binary_search(u.eq_off_joints.begin(), u.eq_off_joints.end(), p)) {
+        f.fallen_against = printable(u.c.blocks[size_t(p.first)].id) + "/" + printable(u.c.blocks[size_t(p.second)].id);
+        break;
+      }
+  }
+  const bool landed = h.end == HoldEnd::equilibrium && f.fallen_against.empty();
+  f.trials.push_back({f.d, landed || h.end != HoldEnd::equilibrium ? dem::hold_end_name(h.end) : dem::hold_end_name(HoldEnd::collapse), cycles, false, true});
+  if (!landed) return false;
+  ++u.landings;
   u.r.settled_snaps.push_back({f.d, u.d_eq, dem::largest_distance(u.eq_positions, dem::positions(u.m, u.c), u.c), h.time});
   f.attempt.hold = h;  // the record counts the whole attempt's cycles; its hold is the one that settled
   f.attempt.cycles += cycles;
@@ -420,6 +444,13 @@ void close(Run& u, const Failure& f) {
     if (f.followed > 0) msg << "; held on " << f.followed << " more hold" << (f.followed > 1 ? "s" : "") << " without settling";
     msg << "), " << width << " " << unit << " past the last equilibrium";
     u.r.limit_point = true;
+  } else if (u.r.collapsed && !f.fallen_against.empty()) {
+    msg << "the collapse at d = " << f.d << " " << unit << " came to rest when held on, but against " << f.fallen_against
+        << ", blocks that share no joint and did not touch at the last equilibrium: a fall, not a snap through (dem/README.md, "
+           "\"Protocol\", stage 6)";
+  } else if (u.r.collapsed && u.landings >= kMaxLandings && f.attempt.hold.end == HoldEnd::collapse && !f.attempt.fell_in_move) {
+    msg << "the run landed " << u.landings << " snaps through already, the most it holds on (dem/README.md, \"Protocol\", stage 6): "
+        << "the collapse at d = " << f.d << " " << unit << " was not held on";
   } else if (!u.r.collapsed) {
     // The bracket stops narrowing at its tolerance, or where a trial could not be decided.
     const double tolerance = u.bracket > 0 ? u.bracket : u.s.step;

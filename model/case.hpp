@@ -224,6 +224,9 @@ double scene_size(const Case& c);
 // lever of 4 m, not 1); for the case, the largest over its supports (0 where none moves).
 double support_travel_per_d(const SupportMotion& m, const Bounds& scene);
 double support_travel_per_d(const Case& c);
+// The same, 1 where no support moves: the scale of d against the structure's lengths that the
+// DEM's loading and compare's jumps read (d then moves nothing, and a metre of it counts as one).
+double path_travel_per_d(const Case& c);
 // The SI unit of the path parameter d, as reports write it: "rad" when every moving support only
 // turns (d is then an angle, a tilt), else "m" (a support that translates, with or without
 // turning, moves by d metres per unit).

@@ -378,20 +378,20 @@ TEST(Sliding, ASlideIsItsLengthAndAHingeNone) {
 
 // Jumps (compare/README.md, "Jumps"): between two records one step apart (1 degree of the
 // tilting block's slab, whose farthest point travels the scene's size per radian), the block
-// moved by ten times that travel is a jump, by twice it none; and where one run collapses at the
-// other's jump, which the other went through, the report says so.
+// moved by ten times that travel is a jump, by twice it none, and by less than a thousandth of
+// the scene none however small the step; and where one run collapses at the other's jump, which
+// the other went through, the report says so.
 TEST(Jumps, AMotionFarBeyondTheSupportsTravelIsAJump) {
   const Case c = load("tilting-block");
-  RunResult base = prd(with_option(c, "motion.max_steps", 2));
-  ASSERT_GE(base.steps.size(), 3u);
-  base.steps.resize(3);
+  RunResult base = prd(with_option(c, "motion.max_steps", 8));  // standing on well past the jump
+  ASSERT_GE(base.steps.size(), 9u);
+  base.steps.resize(9);
   const double travel = support_travel_per_d(c) * (base.steps[1].d - base.steps[0].d);
   const auto moved_by = [&](double k) {
     RunResult r = base;
-    r.steps[1].poses = r.steps[0].poses;
-    r.steps[2].poses = r.steps[0].poses;
-    r.steps[2].poses[1].x += k * travel;  // the block, between the second and third records
-    r.capacity = r.steps[2].d;
+    for (size_t i = 1; i < r.steps.size(); ++i) r.steps[i].poses = r.steps[0].poses;
+    for (size_t i = 2; i < r.steps.size(); ++i) r.steps[i].poses[1].x += k * travel;  // the block, between the second and third records
+    r.capacity = r.steps.back().d;
     r.status = RunStatus::max_steps;
     return r;
   };
@@ -403,6 +403,16 @@ TEST(Jumps, AMotionFarBeyondTheSupportsTravelIsAJump) {
   EXPECT_DOUBLE_EQ(j[0].from, base.steps[1].d);
   EXPECT_DOUBLE_EQ(j[0].to, base.steps[2].d);
   EXPECT_TRUE(jumps(c, crept).empty());
+  // Far beyond the supports' travel but under a thousandth of the scene: no jump (a settling).
+  const double floor = kJumpFloor * scene_size(c);
+  RunResult tiny = base;
+  tiny.steps.resize(3);
+  for (StepRecord& s : tiny.steps) s.poses = base.steps[0].poses;
+  tiny.steps[2].poses[1].x += 0.5 * floor;
+  tiny.steps[2].d = tiny.steps[1].d + 1e-3 * (base.steps[2].d - base.steps[1].d);  // a thousandth of a step: 0.5 floor is far beyond its travel
+  ASSERT_GT(0.5 * floor, kJumpRatio * travel * 1e-3);
+  tiny.capacity = tiny.steps[2].d;
+  EXPECT_TRUE(jumps(c, tiny).empty());
   // The other run collapsed at the first record: near the jump, which the first went through.
   RunResult fell = crept;
   fell.steps.resize(2);
@@ -416,6 +426,17 @@ TEST(Jumps, AMotionFarBeyondTheSupportsTravelIsAJump) {
   const std::string md = report_markdown(make_report(c, {{"PRD", &jumped, "a"}, {"other", &fell, "b"}}), {});
   EXPECT_NE(md.find("Jumps: "), std::string::npos);
   EXPECT_NE(md.find("other collapsed at 17.5 mrad, near PRD's jump at 17.5 to 34.9 mrad, which PRD went through"), std::string::npos) << md;
+  // A run that stood no further than the jump's end did not go through it: no such sentence
+  // (PRD's last sub-step into a located limit is a jump, and a run collapsing beside it met the
+  // same limit).
+  RunResult ended = jumped;
+  ended.steps.resize(3);
+  ended.capacity = ended.steps[2].d;
+  ended.collapsed = true;
+  ended.status = RunStatus::collapse;
+  const std::string md2 = report_markdown(make_report(c, {{"PRD", &ended, "a"}, {"other", &fell, "b"}}), {});
+  EXPECT_NE(md2.find("Jumps: "), std::string::npos);
+  EXPECT_EQ(md2.find("which PRD went through"), std::string::npos) << md2;
 }
 
 TEST(Sliding, ADemBlockOnATiltingSlabShearsElasticallyAndPrdRidesRigidly) {

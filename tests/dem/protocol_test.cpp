@@ -334,6 +334,11 @@ TEST(DemBracket, ABlockFallenAgainstAPostIsACollapseNotALanding) {
   const RunResult r = test::tilt_run(c);
   ASSERT_EQ(r.status, RunStatus::collapse) << r.message;
   EXPECT_TRUE(r.settled_snaps.empty());
+  // It did come to rest, against the post: the run says so (the landing's trial reads a collapse).
+  EXPECT_NE(r.message.find("came to rest when held on, but against post/block"), std::string::npos) << r.message;
+  ASSERT_TRUE(r.collapse_bracket);
+  EXPECT_TRUE(r.collapse_bracket->trials.back().followed);
+  EXPECT_EQ(r.collapse_bracket->trials.back().end, "collapse");
   const double topple = std::atan(b / h);
   EXPECT_LE(r.capacity, topple + 2 * tipping_resolution(b, h));
   EXPECT_GT(r.capacity, topple - 0.1 * kDeg);

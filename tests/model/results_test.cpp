@@ -164,12 +164,20 @@ TEST(ResultsReader, WhatPrdAndTheDemWriteReadsBackToTheSameFile) {
   // The follow stage's fields (a creep that settled when held on, a followed trial).
   RunResult followed = dem;
   followed.settled_creeps.push_back({0.01, 2, 31.5});
+  followed.settled_snaps.push_back({0.015, 0.0149, 0.05, 0.13});  // the landing stage's
   followed.collapse_bracket->trials.push_back({0.02, "creep", 1000, false, true});
   expect_round_trip(followed, c);
   const auto written = to_json(followed, c);
   EXPECT_EQ(written["settled_creeps"].size(), 1u);
   EXPECT_EQ(written["collapse_bracket"]["trials"].back().value("followed", false), true);
   EXPECT_EQ(parse_results(written.dump(), c, "results.json").settled_creeps.at(0).holds, 2);
+  EXPECT_EQ(written["settled_snaps"].size(), 1u);
+  const RunResult back = parse_results(written.dump(), c, "results.json");
+  ASSERT_EQ(back.settled_snaps.size(), 1u);
+  EXPECT_EQ(back.settled_snaps[0].d, 0.015);
+  EXPECT_EQ(back.settled_snaps[0].from, 0.0149);
+  EXPECT_EQ(back.settled_snaps[0].drift, 0.05);
+  EXPECT_EQ(back.settled_snaps[0].time, 0.13);
   // PRD with the sliding check and a corner held closed: their fields too.
   Case checked = with_option(with_option(c, "prd.sliding_check", true), "prd.hold_closed", nlohmann::json::array({"ground/block:B"}));
   const RunResult held = run_case(checked, Method::prd);
