@@ -169,6 +169,12 @@ def main():
     passing = os.path.join(src, "tests", "dem", "passing-hinge-arch.json")
     check("case", load(passing), passing)
     runs["dem-passing"] = ["dem", passing, "--quiet", "--hold-time", "1"]
+    # A DEM run that lands a snap through (settled_snaps: DemBracket.ASnapLongerThanTheDriftLimit-
+    # LandsAndTheRunGoesOn's arch and drift limit), and PRD on the same path: their comparison
+    # lists both runs' jumps.
+    arch = os.path.join(src, "cases", "pointed-arch.json")
+    runs["prd-arch"] = ["prd", arch, "--max-steps", "110"]
+    runs["dem-snap"] = ["dem", arch, "--quiet", "--collapse-drift", "0.005", "--max-steps", "110"]
     for name, args in runs.items():
         out = os.path.join(tmp, name)
         run(exe, *args, "--out", out)
@@ -177,6 +183,8 @@ def main():
             check("results", load(path), path)
             if name == "dem-passing":
                 expect(lambda: load(path).get("settled_creeps"), "a creep that settled when held on (dem-passing)")
+            if name == "dem-snap":
+                expect(lambda: load(path).get("settled_snaps"), "a snap through that landed (dem-snap)")
     tolerances = os.path.join(tmp, "tolerances.json")
     with open(tolerances, "w") as f:
         json.dump({"capacity": 0.05, "capacity_abs": 0.02, "thrust": 0.1, "hinges": True}, f)
@@ -193,6 +201,13 @@ def main():
         path = os.path.join(out, "comparison.json")
         if os.path.exists(path):
             check("comparison", load(path), path)
+    snaps = os.path.join(tmp, "compare-snap")
+    run(exe, "compare", arch, "--out", snaps, "--quiet", "--frames", "2", "--runs", os.path.join(tmp, "prd-arch"), os.path.join(tmp, "dem-snap"))
+    path = os.path.join(snaps, "comparison.json")
+    if os.path.exists(path):
+        check("comparison", load(path), path)
+        expect(lambda: load(path)["comparisons"][0]["jumps"]["a"] and load(path)["comparisons"][0]["jumps"]["b"],
+               "both runs' jumps (compare-snap)")
 
     # Sweeps (PRD-only but one, few runs): sweep.json and sensitivity.json of a grid with a failed
     # run (thickness < 0: the generator refuses it) and a DEM option PRD ignores, of a Latin
