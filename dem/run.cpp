@@ -19,11 +19,6 @@ namespace {
 using dem::HoldEnd;
 using dem::HoldOutcome;
 
-// How far a support point travels per unit of d: path_travel_per_d (model/case.hpp). The work
-// the supports do on the structure over an increment is of the order of the weight times this
-// times the increment.
-double travel_per_d(const Case& c) { return path_travel_per_d(c); }
-
 // The servo's largest acceleration of a point carried by the supports, over gravity (dem::move):
 // a hundredth of gravity at the farthest point of the scene a support could carry (its
 // translation plus its rotation over the scene size, per unit of d). A structure on an
@@ -189,7 +184,7 @@ Attempt attempt(Run& u, double d0, double d1, long long watch = 0) {
   const long long c0 = u.m.cycles();
   // The hold's runaway scale, J: the same target for the whole structure's kinetic energy.
   u.lim.ke_collapse = 10 * (u.ke_height_per_d * u.r.total_weight) * (d1 - d0);
-  u.lim.move_drift = u.lim.collapse_drift + travel_per_d(u.c) * (d1 - d0);
+  u.lim.move_drift = u.lim.collapse_drift + path_travel_per_d(u.c) * (d1 - d0);
   const std::vector<Vec2> before = dem::positions(u.m, u.c);
   const dem::MoveOutcome mv = dem::move(u.m, u.c, u.s, d0, d1, u.ke_height_per_d * (d1 - d0), u.speed / 4, u.lim);
   u.speed = mv.speed;
@@ -379,10 +374,11 @@ bool follow(Run& u, Failure& f) {
 // limit of 0.4 m). So a collapse is a drift of collapse_drift that does not come to rest within
 // another collapse_drift: the failed state is held on, and only a drift of collapse_drift from
 // there calls the collapse (not the kinetic energy's rise, nor the early reading: a snap gains
-// energy and speeds up before it lands, as the follow stage's hinges do). Where it settles with
-// every contact at a joint of the case, the structure stands on the other branch: recorded (settled_snaps), and the increments go on from
-// there, off the grid. Otherwise the collapse stands, with the state the bracket found. A failure
-// during the move is not held on: its supports stopped short of f.d. Whether the run goes on.
+// energy and speeds up before it lands, as the follow stage's hinges do). Where it settles without
+// pressing on a face it was not cut against, the structure stands on the other branch: recorded
+// (settled_snaps), and the increments go on from there, off the grid. Otherwise the collapse
+// stands, with the state the bracket found. A failure during the move is not held on: its
+// supports stopped short of f.d. Whether the run goes on.
 bool land(Run& u, Failure& f) {
   if (f.attempt.hold.end != HoldEnd::collapse || f.attempt.fell_in_move || u.landings >= kMaxLandings) return false;
   u.m.restore(f.state);
@@ -408,7 +404,8 @@ bool land(Run& u, Failure& f) {
       }
   }
   const bool landed = h.end == HoldEnd::equilibrium && f.fallen_against.empty();
-  f.trials.push_back({f.d, landed || h.end != HoldEnd::equilibrium ? dem::hold_end_name(h.end) : dem::hold_end_name(HoldEnd::collapse), cycles, false, true});
+  const HoldEnd shown = landed || h.end != HoldEnd::equilibrium ? h.end : HoldEnd::collapse;  // a rest against such a face is a fall
+  f.trials.push_back({f.d, dem::hold_end_name(shown), cycles, false, true});
   if (!landed) return false;
   ++u.landings;
   u.r.settled_snaps.push_back({f.d, u.d_eq, dem::largest_distance(u.eq_positions, dem::positions(u.m, u.c), u.c), h.time});
@@ -500,8 +497,8 @@ RunResult dem_run(const Case& c, const DemSettings& s, const std::function<void(
   u.lim.collapse_drift = s.collapse_drift > 0 ? s.collapse_drift : 0.02 * scene_size(c);
   u.lim.energy_floor = 1e-9 * r.total_weight * scene_size(c);
   u.lim.creep_floor = std::max(0.01 * c.prd.contact_tolerance, 1e-9 * scene_size(c));
-  u.ke_height_per_d = s.kinetic_ratio * travel_per_d(c);
-  u.lim.move_accel = kMoveAccel * kReferenceGravity / travel_per_d(c);
+  u.ke_height_per_d = s.kinetic_ratio * path_travel_per_d(c);
+  u.lim.move_accel = kMoveAccel * kReferenceGravity / path_travel_per_d(c);
   u.bracket = s.bracket_fraction * s.step;
   record_settings(u);
   try {
