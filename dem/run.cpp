@@ -81,10 +81,6 @@ struct Run {
   double speed = 0;
   DemSnapshot last_eq;  // the last equilibrium, at d_eq
   double d_eq = 0;
-  std::vector<Vec2> eq_positions;  // the blocks' positions there (how far a snap carried them)
-  // Block pairs in contact there off the case's joints (DemModel::off_joint_contacts): a landing
-  // may keep these, not add to them.
-  std::vector<std::pair<int, int>> eq_off_joints;
   int landings = 0;  // land()'s, so far
   int index = 0;  // of the next record (0: the settled initial configuration)
   // Increments follow the grid k x step until a failure that was not confirmed moves the last
@@ -173,8 +169,6 @@ void settled_at(Run& u, const Attempt& a, double d, bool bracketing) {
   u.r.capacity = u.d_eq = d;
   ++u.r.stable_steps;
   u.last_eq = u.m.save();
-  u.eq_positions = dem::positions(u.m, u.c);
-  u.eq_off_joints = u.m.off_joint_contacts(u.joints);
 }
 
 // One attempt to reach d1 from an equilibrium at d0: move, then hold (watching at least `watch`
@@ -229,8 +223,6 @@ bool settle(Run& u) {
   }
   u.settled_gaps = u.m.corner_gaps(u.joints);
   u.last_eq = u.m.save();
-  u.eq_positions = dem::positions(u.m, u.c);
-  u.eq_off_joints = u.m.off_joint_contacts(u.joints);
   u.d_eq = 0;
   return true;
 }
@@ -381,6 +373,11 @@ bool follow(Run& u, Failure& f) {
 // supports stopped short of f.d. Whether the run goes on.
 bool land(Run& u, Failure& f) {
   if (f.attempt.hold.end != HoldEnd::collapse || f.attempt.fell_in_move || u.landings >= kMaxLandings) return false;
+  // The last equilibrium's positions (how far a snap carries the blocks) and its contacts off the
+  // case's joints (a landing may keep these, not add to them), read from its snapshot.
+  u.m.restore(u.last_eq);
+  const std::vector<Vec2> eq_positions = dem::positions(u.m, u.c);
+  const std::vector<std::pair<int, int>> eq_off_joints = u.m.off_joint_contacts(u.joints);
   u.m.restore(f.state);
   u.m.set_support_parameter(f.d);
   const std::vector<Vec2> here = dem::positions(u.m, u.c);
@@ -398,7 +395,7 @@ bool land(Run& u, Failure& f) {
   // equilibrium, has fallen there: a collapse.
   if (h.end == HoldEnd::equilibrium) {
     for (const auto& p : u.m.off_joint_contacts(u.joints))
-      if (!std::binary_search(u.eq_off_joints.begin(), u.eq_off_joints.end(), p)) {
+      if (!std::binary_search(eq_off_joints.begin(), eq_off_joints.end(), p)) {
         f.fallen_against = printable(u.c.blocks[size_t(p.first)].id) + "/" + printable(u.c.blocks[size_t(p.second)].id);
         break;
       }
@@ -408,7 +405,7 @@ bool land(Run& u, Failure& f) {
   f.trials.push_back({f.d, dem::hold_end_name(shown), cycles, false, true});
   if (!landed) return false;
   ++u.landings;
-  u.r.settled_snaps.push_back({f.d, u.d_eq, dem::largest_distance(u.eq_positions, dem::positions(u.m, u.c), u.c), h.time});
+  u.r.settled_snaps.push_back({f.d, u.d_eq, dem::largest_distance(eq_positions, dem::positions(u.m, u.c), u.c), h.time});
   f.attempt.hold = h;  // the record counts the whole attempt's cycles; its hold is the one that settled
   f.attempt.cycles += cycles;
   settled_at(u, f.attempt, f.d, true);
