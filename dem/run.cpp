@@ -302,6 +302,33 @@ bool confirm(Run& u, Failure& f) {
   return true;
 }
 
+// The failed state, the supports at its d, held on from where it stands (stages 5 and 6): only a
+// drift of collapse_drift from there calls a collapse, not the kinetic energy's rise over the
+// hold's windows, nor the reading of a slow collapse from a tenth of that drift, since a hinge
+// passing to another joint gains energy and moves that far, speeding up, before it lands (as the
+// settling at d = 0, which only a drift ends). Returns where it stood.
+std::vector<Vec2> from_failed_state(Run& u, const Failure& f) {
+  u.m.restore(f.state);
+  u.m.set_support_parameter(f.d);
+  u.lim.ke_collapse = INFINITY;
+  return dem::positions(u.m, u.c);
+}
+HoldOutcome hold_on(Run& u, const std::vector<Vec2>& here, long long watch) {
+  u.lim.read_early = false;
+  const HoldOutcome h = dem::hold(u.m, u.c, u.s, u.lim, watch, &here);
+  u.lim.read_early = true;
+  return h;
+}
+
+// A failure held on that settled: another branch. The record counts the whole attempt's cycles;
+// its hold is the one that settled; the increments go on from there, off the grid.
+void settled_on_another_branch(Run& u, Failure& f, const HoldOutcome& h, long long cycles) {
+  f.attempt.hold = h;
+  f.attempt.cycles += cycles;
+  settled_at(u, f.attempt, f.d, true);
+  u.on_grid = false;
+}
+
 // Stage 5: the creep at the bracket's upper end held on. A bracket that closes on an upper end
 // that creeps, and speeds up, has found a limit point of the branch the structure was on; that is
 // its capacity only where no other equilibrium lies within reach. A hinge that passes from one
@@ -316,34 +343,21 @@ bool confirm(Run& u, Failure& f) {
 // kFollowHolds holds, the bracket's verdict stands. Whether the run goes on.
 bool follow(Run& u, Failure& f) {
   if (f.attempt.hold.end != HoldEnd::creep) return false;
-  u.m.restore(f.state);
-  u.m.set_support_parameter(f.d);
-  // Only a drift of collapse_drift from where the following began calls a collapse here: not the
-  // kinetic energy's rise over the hold's windows, nor the reading of a slow collapse from a
-  // tenth of that drift, since a hinge passing to another joint gains energy and moves that far,
-  // speeding up, before it lands (as the settling at d = 0, which only a drift ends).
-  const std::vector<Vec2> here = dem::positions(u.m, u.c);
-  u.lim.ke_collapse = INFINITY;
-  u.lim.read_early = false;
+  const std::vector<Vec2> here = from_failed_state(u, f);
   HoldOutcome h = f.attempt.hold;
   long long cycles = 0;
   double time = 0;
   while (f.followed < kFollowHolds && h.end == HoldEnd::creep && h.second_half > h.first_half) {
     const long long c0 = u.m.cycles();
-    h = dem::hold(u.m, u.c, u.s, u.lim, 0, &here);
+    h = hold_on(u, here, 0);
     ++f.followed;
     cycles += u.m.cycles() - c0;
     time += h.time;
     f.trials.push_back({f.d, dem::hold_end_name(h.end), u.m.cycles() - c0, false, true});
   }
-  u.lim.read_early = true;
   if (h.end == HoldEnd::equilibrium) {
-    // The record counts the whole attempt's cycles; its hold is the one that settled.
-    f.attempt.hold = h;
-    f.attempt.cycles += cycles;
     u.r.settled_creeps.push_back({f.d, f.followed, time});
-    settled_at(u, f.attempt, f.d, true);
-    u.on_grid = false;
+    settled_on_another_branch(u, f, h, cycles);
     return true;
   }
   if (h.end == HoldEnd::collapse) {
@@ -365,8 +379,8 @@ bool follow(Run& u, Failure& f) {
 // collapse at 0.373 m where PRD goes on to 0.585 m (and the DEM too, at 0.584 m, with a drift
 // limit of 0.4 m). So a collapse is a drift of collapse_drift that does not come to rest within
 // another collapse_drift: the failed state is held on, and only a drift of collapse_drift from
-// there calls the collapse (not the kinetic energy's rise, nor the early reading: a snap gains
-// energy and speeds up before it lands, as the follow stage's hinges do). Where it settles without
+// there calls the collapse (from_failed_state: a snap gains energy and speeds up before it
+// lands, as the follow stage's hinges do). Where it settles without
 // pressing on a face it was not cut against, the structure stands on the other branch: recorded
 // (settled_snaps), and the increments go on from there, off the grid. Otherwise the collapse
 // stands, with the state the bracket found. A failure during the move is not held on: its
@@ -378,16 +392,11 @@ bool land(Run& u, Failure& f) {
   u.m.restore(u.last_eq);
   const std::vector<Vec2> eq_positions = dem::positions(u.m, u.c);
   const std::vector<std::pair<int, int>> eq_off_joints = u.m.off_joint_contacts(u.joints);
-  u.m.restore(f.state);
-  u.m.set_support_parameter(f.d);
-  const std::vector<Vec2> here = dem::positions(u.m, u.c);
-  u.lim.ke_collapse = INFINITY;
-  u.lim.read_early = false;
+  const std::vector<Vec2> here = from_failed_state(u, f);
   const long long c0 = u.m.cycles();
   // As the confirming hold: a rest is taken only after four times as long as the failure took
   // to show itself (at most the cap), since the motion may pass through rest at an unstable state.
-  const HoldOutcome h = dem::hold(u.m, u.c, u.s, u.lim, 4 * f.attempt.hold.cycles, &here);
-  u.lim.read_early = true;
+  const HoldOutcome h = hold_on(u, here, 4 * f.attempt.hold.cycles);
   const long long cycles = u.m.cycles() - c0;
   // A snap passes along the structure's own joints (a hinge closes, another opens), as PRD's
   // step does, which keeps contact only at the joints it started from; a part that comes to rest
@@ -406,10 +415,7 @@ bool land(Run& u, Failure& f) {
   if (!landed) return false;
   ++u.landings;
   u.r.settled_snaps.push_back({f.d, u.d_eq, dem::largest_distance(eq_positions, dem::positions(u.m, u.c), u.c), h.time});
-  f.attempt.hold = h;  // the record counts the whole attempt's cycles; its hold is the one that settled
-  f.attempt.cycles += cycles;
-  settled_at(u, f.attempt, f.d, true);
-  u.on_grid = false;
+  settled_on_another_branch(u, f, h, cycles);
   return true;
 }
 
