@@ -19,6 +19,7 @@
 #include "compare/report.hpp"
 #include "dem/dem.hpp"
 #include "model/io.hpp"
+#include "prd/prd.hpp"
 #include "report/format.hpp"
 #include "runs/progress.hpp"
 #include "runs/run.hpp"
@@ -35,6 +36,7 @@ struct CompareOpts {
   std::optional<double> dem_step;  // motion.step of the DEM runs only
   int frames = 0;
   bool quiet = false;
+  bool no_damped_rerun = false;  // keep a DEM run that slid where statics does not ask for it
 };
 
 std::string num_text(double x) {
@@ -51,6 +53,7 @@ std::string command_line(const CompareOpts& o, const std::string& case_shown) {
   if (o.dem_step) s += " --dem-step " + num_text(*o.dem_step);
   if (!o.tolerances.empty()) s += " --tolerances " + o.tolerances;
   if (!o.notes.empty()) s += " --notes " + o.notes;
+  if (o.no_damped_rerun) s += " --no-damped-rerun";
   if (!o.runs.empty()) {
     s += " --runs";
     for (const std::string& r : o.runs) s += " " + r;
@@ -93,6 +96,47 @@ std::string prd_label(const nlohmann::json& held) {
   for (size_t k = 0; k < held.size(); ++k)
     if (held[k].is_string()) label += (k ? ", " : " held ") + held[k].get<std::string>();
   return label;
+}
+
+// compare/README.md, "A slide statics does not ask for": where the DEM run slid a joint PRD's
+// did not, by more than kUnexplainedSlide of the supports' travel, and PRD's sliding check finds
+// some force state within the DEM's friction at every step up to there, the slide is the joints'
+// vibration ratcheting them, not the weights: the DEM runs again with contact damping (the first
+// run kept beside it, SUB-undamped). Nothing where the DEM already has contact damping.
+std::optional<DampedRerun> rerun_if_unexplained_slide(const Case& c, const Case& dc, double phi, const RunResult& prd, RunResult& dem,
+                                                      const CompareOpts& o, const std::string& sub) {
+  if (o.no_damped_rerun || dc.dem.contact_damping > 0 || known_method(prd) != Method::prd) return std::nullopt;
+  const std::optional<SlideSuspect> s = slide_suspect(c, compare_runs(c, prd, dem));
+  if (!s) return std::nullopt;
+  PrdSettings ps = PrdSettings::from_case(c);
+  ps.sliding_check = true;
+  ps.friction_angle = phi;
+  const RunResult check = run_prd(c, ps);
+  const std::optional<SlidingExceedance> e = first_sliding(c, check, phi, true);
+  const std::string unit = path_unit(c);
+  if (e && e->d <= s->to) {
+    progress(o.quiet, "compare: the DEM slid joint " + printable(s->joint) + " by " + num_text(s->slip) + " m, as statics asks: every admissible force state needs more than " +
+                          num_text(phi) + " deg of friction from d = " + num_text(e->d) + " " + unit + "\n");
+    return std::nullopt;
+  }
+  const std::string dir = o.out_dir + "/" + sub, first = sub + "-undamped";
+  std::filesystem::remove_all(o.out_dir + "/" + first);
+  std::filesystem::rename(dir, o.out_dir + "/" + first);
+  DampedRerun x;
+  x.slide = *s;
+  x.friction_angle = phi;
+  if (e) x.statics_slides_at = e->d;
+  x.contact_damping = kCheckContactDamping;
+  x.first_capacity = dem.capacity;
+  x.first_status = dem.status;
+  x.first_dir = first;
+  progress(o.quiet, "compare: the DEM slid joint " + printable(s->joint) + " by " + num_text(s->slip) + " m (PRD's " + num_text(s->other) +
+                        " m) where PRD's forces stay within friction: the DEM again, with contact damping " + num_text(x.contact_damping) + " (the first run in " +
+                        first + ") ...\n");
+  const Case damped = with_option(dc, option_key(&DemOptions::contact_damping), x.contact_damping);
+  RunProgress dem_progress("compare: dem", damped.motion.step * damped.motion.max_steps, 0.0, dem_step_detail, unit);
+  dem = run_case(damped, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)});
+  return x;
 }
 
 int run_compare(const Case& c, const CompareOpts& o, const std::string& case_shown) {
@@ -144,7 +188,12 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       RunProgress dem_progress("compare: dem", dc.motion.step * dc.motion.max_steps, 0.0, dem_step_detail, path_unit(c));
       results.push_back(run_case(dc, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)}));
       progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
+      std::optional<DampedRerun> rerun = rerun_if_unexplained_slide(c, dc, phi, results.front(), results.back(), o, sub);
+      if (rerun)
+        progress(o.quiet, "compare: DEM with contact damping: capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " +
+                              num_text(results.back().timing.total_s) + " s\n");
       runs.push_back({dem_label(phi), nullptr, sub});
+      runs.back().rerun = rerun;
     }
   }
   for (size_t k = 0; k < runs.size(); ++k) {
@@ -185,6 +234,9 @@ void add_common_options(CLI::App* sub, CompareOpts& o) {
                   "Plain-text file of the author's notes on the result (paragraphs separated by blank lines), shown after the "
                   "tolerance checks, e.g. the mechanical reason a check fails");
   sub->add_flag("--quiet", o.quiet, "No progress lines and no summary: only warnings and why the exit code is not 0");
+  sub->add_flag("--no-damped-rerun", o.no_damped_rerun,
+                "Keep a DEM run that slid a joint where PRD's did not and statics does not ask for it, instead of running it again with "
+                "contact damping (compare/README.md)");
 }
 
 }  // namespace

@@ -146,6 +146,20 @@ ojson report_json(const Report& r) {
                     {"time_s", json_number(rr.run->timing.total_s)},
                     {"settings", rr.run->settings}});
     if (rr.prd_on_run) runs.back()["prd_on_run"] = prd_on_run_json(*rr.prd_on_run);
+    if (rr.rerun) {
+      const DampedRerun& x = *rr.rerun;
+      runs.back()["damped_rerun"] = {{"joint", x.slide.joint},
+                                     {"slip", json_number(x.slide.slip)},
+                                     {"other_slip", json_number(x.slide.other)},
+                                     {"travel", json_number(x.slide.travel)},
+                                     {"to", json_number(x.slide.to)},
+                                     {"friction_angle", json_number(x.friction_angle)},
+                                     {"statics_slides_at", json_number(x.statics_slides_at)},
+                                     {"contact_damping", json_number(x.contact_damping)},
+                                     {"first_capacity", json_number(x.first_capacity)},
+                                     {"first_stopped", status_name(x.first_status)},
+                                     {"first_dir", x.first_dir}};
+    }
   }
   j["runs"] = runs;
   ojson cs = ojson::array();
@@ -480,6 +494,22 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
                  cmp.a.label + " " + len(s.largest_b.a) + " there). Where one method's joints slid and the other's did not, the two "
                  "answer for different mechanisms; a DEM whose joints slid where PRD's mechanism turns about hinges and its friction "
                  "suffices may have joints stiff against the weights (dem/README.md, \"Contact damping\")."});
+  }
+  // The run of this comparison is compare's damped rerun of another: say why and what it changed.
+  for (const ReportRun& rr : r.runs) {
+    if (!rr.rerun || rr.run == nullptr || rr.label != cmp.b.label) continue;
+    const DampedRerun& x = *rr.rerun;
+    const auto len = [](double m) { return std::isfinite(m) ? fmt::number(m * 1e3, "%.3f", m * 1e3) + " mm" : std::string("n/a"); };
+    d.paragraph({"A slide statics does not ask for: " + cmp.b.label + " is a rerun with contact damping " + fmt::g(x.contact_damping) +
+                 ". Its first run (" + x.first_dir + ", " + status_name(x.first_status) + " at " + fmt::mm(x.first_capacity) + " " + unit +
+                 ") slid joint " + x.slide.joint + " by " + len(x.slide.slip) + " up to d = " + fmt::mm(x.slide.to) + " " + unit + ", " +
+                 fmt::number(x.slide.slip / x.slide.travel * 100, "%.1f%%", x.slide.slip / x.slide.travel * 100) + " of the supports' largest travel (" + len(x.slide.travel) + "), where " + cmp.a.label +
+                 "'s joint slid " + len(x.slide.other) + "; and PRD's sliding check at " + fmt::g(x.friction_angle) +
+                 " degrees finds a force state within friction at every step " +
+                 (std::isfinite(x.statics_slides_at) ? "before d = " + fmt::mm(x.statics_slides_at) + " " + unit : std::string("of its path")) +
+                 ". A slide the weights do not need is the joints' vibration ratcheting them (joints stiff against the weights: "
+                 "dem/README.md, \"Contact damping\"), which contact damping removes without changing the statics; rerun the "
+                 "comparison with --no-damped-rerun to keep the first run."});
   }
   jumps_paragraph(d, cmp, unit);
 }

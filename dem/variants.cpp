@@ -9,10 +9,6 @@ namespace masonry {
 
 namespace {
 
-// Contact damping's zeta in the convergence study: the value measured on the standard scenes and
-// the zoo (2026-11-28, dem/README.md, "Contact damping").
-constexpr double kConvergenceContactDamping = 0.3;
-
 std::string num(double v) {
   std::ostringstream o;
   o << v;
@@ -63,8 +59,8 @@ std::vector<DemVariant> convergence_variants(const DemSettings& base) {
   // the joints are stiff against the weights the undamped joints ratchet (dem/README.md,
   // "Contact damping"), and this variant is the one that parts from the default.
   const bool add = !(base.contact_damping > 0);
-  DemVariant cd{"contact-damping", add ? "contact damping " + num(kConvergenceContactDamping) : "no contact damping", base};
-  cd.settings.contact_damping = add ? kConvergenceContactDamping : 0.0;
+  DemVariant cd{"contact-damping", add ? "contact damping " + num(kCheckContactDamping) : "no contact damping", base};
+  cd.settings.contact_damping = add ? kCheckContactDamping : 0.0;
   v.push_back(cd);
   if (base.friction_angle < 90) {
     DemVariant fr{"more-friction", "", base};

@@ -1,0 +1,72 @@
+// `masonry compare` runs the DEM again with contact damping where its first run slid a joint PRD's
+// did not and statics does not ask for it (compare/README.md, "A slide statics does not ask for").
+// The structure: the zoo's jack arch scaled by 0.05 (a 6 cm opening of the same material, so its
+// joints are twenty times stiffer against its weights), whose undamped DEM ratchets at the right
+// skewback; the expected answer is the other method's: PRD's capacity, within the 3% the two
+// methods are held to on the zoo (validate's catalogue).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "common.hpp"
+
+namespace masonry {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Scratch;
+const std::string kExe = MASONRY_EXE;
+
+// The jack arch with every length times k (its support only turns: d stays in rad).
+std::string scaled_jack_arch(const Scratch& dir, double k) {
+  nlohmann::json c = nlohmann::json::parse(test::read(std::string(MASONRY_SOURCE_DIR) + "/cases/zoo/jack-arch.json"));
+  for (auto& b : c["blocks"])
+    for (auto& v : b["vertices"]) v = {v[0].get<double>() * k, v[1].get<double>() * k};
+  for (auto& s : c["motion"]["supports"]) {
+    EXPECT_EQ(s["translation"], nlohmann::json({0.0, 0.0}));
+    s["about"] = {s["about"][0].get<double>() * k, s["about"][1].get<double>() * k};
+  }
+  const std::string path = (dir.path / "jack.json").string();
+  std::ofstream(path) << c.dump();
+  return path;
+}
+
+nlohmann::json comparison(const fs::path& out) { return nlohmann::json::parse(test::read(out / "comparison.json")); }
+
+TEST(CompareRerun, ADemJointSlidWhereStaticsDoesNotAskIsRunAgainWithContactDamping) {
+  Scratch dir("compare-rerun");
+  const std::string c = scaled_jack_arch(dir, 0.05);
+  const fs::path out = dir.path / "o";
+  ASSERT_EQ(test::run(kExe + " compare " + c + " --out " + out.string() + " --quiet --frames 2 >/dev/null 2>&1"), 0);
+  const nlohmann::json j = comparison(out);
+  const double prd = j["runs"][0]["capacity"], dem = j["runs"][1]["capacity"];
+  EXPECT_NEAR(dem / prd, 1.0, 0.03) << "PRD " << prd << " rad, DEM " << dem << " rad";
+  ASSERT_TRUE(j["runs"][1].contains("damped_rerun")) << j["runs"][1].dump();
+  const nlohmann::json& x = j["runs"][1]["damped_rerun"];
+  EXPECT_EQ(x["contact_damping"], j["runs"][1]["settings"]["contact_damping"]);
+  EXPECT_GT(x["contact_damping"].get<double>(), 0.0);
+  EXPECT_GT(x["slip"].get<double>(), 0.01 * x["travel"].get<double>());
+  EXPECT_EQ(x["friction_angle"], 35.0);
+  // The first run is kept beside the rerun, and the report says why it was made.
+  EXPECT_TRUE(fs::exists(out / x["first_dir"].get<std::string>() / "results.json"));
+  EXPECT_NE(test::read(out / "report.md").find("A slide statics does not ask for"), std::string::npos);
+
+  // --no-damped-rerun keeps the first run: the slide the rerun answered is in its sliding check.
+  const fs::path kept = dir.path / "kept";
+  const int rc = test::run(kExe + " compare " + c + " --out " + kept.string() + " --quiet --frames 2 --no-damped-rerun >/dev/null 2>&1");
+  EXPECT_EQ(rc, 0);
+  const nlohmann::json k = comparison(kept);
+  EXPECT_FALSE(k["runs"][1].contains("damped_rerun"));
+  EXPECT_EQ(k["runs"][1]["settings"]["contact_damping"], 0.0);
+  EXPECT_FALSE(fs::exists(kept / "dem-undamped"));
+  EXPECT_EQ(k["runs"][1]["capacity"], x["first_capacity"]);
+  EXPECT_EQ(k["comparisons"][0]["sliding"]["largest_b"]["joint"], x["joint"]);
+  EXPECT_EQ(k["comparisons"][0]["sliding"]["largest_b"]["b"], x["slip"]);
+}
+
+}  // namespace
+}  // namespace masonry
