@@ -129,7 +129,7 @@ for f in sorted(glob.glob(os.path.join(R, "cases", "*.json"))):
     if cmp:
         for r in cmp["runs"]:
             row[r["method"]] = {"capacity": r["capacity"], "stopped": r["stopped"], "message": r["message"], "time_s": r["time_s"],
-                                "prd_located": r.get("prd_on_run", {}).get("own")}
+                                "prd_located": r.get("prd_on_run", {}).get("own"), "damped_rerun": r.get("damped_rerun")}
     if sl and sl.get("stopped") != "error":
         s = sl.get("sliding") or {}
         row["sliding_needs"] = s.get("required_friction_angle")
@@ -144,14 +144,20 @@ def verdict(r):
     slides = need is not None and need > r["friction"] + 1e-9
     ref = d.get("prd_located") or p["capacity"]
     both_end = p["stopped"] == "max_steps" and d["stopped"] == "max_steps"
-    if both_end: return "both stand to the end of the path"
+    if both_end: return "both stand to the end of the path" + rerun_text(d)
     rel = (d["capacity"] - ref) / ref if ref else float("nan")
     tag = "within 3%" if abs(rel) <= 0.03 else "NOT within 3%"
     if slides: tag = "not compared: PRD's forces need %.1f deg of friction (at d = %g), above the case's %g" % (need, r.get("sliding_at"), r["friction"])
-    return "%+.2f%%, %s" % (100 * rel, tag)
+    return "%+.2f%%, %s%s" % (100 * rel, tag, rerun_text(d))
+def rerun_text(d):
+    # compare ran the DEM again with contact damping (compare/README.md, "A slide statics does not ask for").
+    x = d.get("damped_rerun")
+    if not x: return ""
+    return "; the DEM's damped rerun: its first run slid %s by %.2f mm (%.1f%% of the supports' travel), ending %s at %.5g" % (
+        x["joint"], 1e3 * x["slip"], 100 * x["slip"] / x["travel"], x["first_stopped"], x["first_capacity"])
 lines = ["# Structures neither method was tuned on: the table", "",
          "Made by `bash reports/unseen-structures.sh` (the cases in `cases/`; each one's comparison report in `runs/<case>/compare/`, not in git: the script writes them); read with README.md.",
-         "PRD (located: the comparison's PRD on the case's own geometry, events located to the DEM's bracket) against the DEM at the case's own settings; the sliding column is PRD's sliding check at the case's friction angle (the least angle any admissible force state needs over the path). SI units: d in m, or rad where the supports only turn.", "",
+         "PRD (located: the comparison's PRD on the case's own geometry, events located to the DEM's bracket) against the DEM at the case's own settings (where `compare` ran it again with contact damping, the rerun's capacity and CPU); the sliding column is PRD's sliding check at the case's friction angle (the least angle any admissible force state needs over the path). SI units: d in m, or rad where the supports only turn.", "",
          "| case | free blocks | PRD (m) | PRD located | DEM | DEM CPU (s) | PRD's forces need (deg) | DEM vs PRD |",
          "|---|---:|---|---:|---|---:|---:|---|"]
 for r in rows:
