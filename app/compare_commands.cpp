@@ -19,10 +19,10 @@
 #include "compare/report.hpp"
 #include "dem/dem.hpp"
 #include "model/io.hpp"
-#include "prd/prd.hpp"
 #include "report/format.hpp"
 #include "runs/progress.hpp"
 #include "runs/run.hpp"
+#include "runs/slide_check.hpp"
 
 namespace masonry {
 
@@ -99,41 +99,34 @@ std::string prd_label(const nlohmann::json& held) {
 }
 
 // compare/README.md, "A slide statics does not ask for": where the DEM run slid a joint PRD's
-// did not, by more than kUnexplainedSlide of the supports' travel, and PRD's sliding check finds
-// some force state within the DEM's friction at every step up to there, the slide is the joints'
-// vibration ratcheting them, not the weights: the DEM runs again with contact damping (the first
-// run kept beside it, SUB-undamped). Nothing where the DEM already has contact damping.
-std::optional<DampedRerun> rerun_if_unexplained_slide(const Case& c, const Case& dc, double phi, const RunResult& prd, RunResult& dem,
-                                                      const CompareOpts& o, const std::string& sub) {
-  if (o.no_damped_rerun || dc.dem.contact_damping > 0 || known_method(prd) != Method::prd) return std::nullopt;
-  const std::optional<SlideSuspect> s = slide_suspect(c, compare_runs(c, prd, dem));
-  if (!s) return std::nullopt;
-  PrdSettings ps = PrdSettings::from_case(c);
-  ps.sliding_check = true;
-  ps.friction_angle = phi;
-  const RunResult check = run_prd(c, ps);
-  const std::optional<SlidingExceedance> e = first_sliding(c, check, phi, true);
-  const std::string unit = path_unit(c);
-  if (e && e->d <= s->to) {
-    progress(o.quiet, "compare: the DEM slid joint " + printable(s->joint) + " by " + num_text(s->slip) + " m, as statics asks: every admissible force state needs more than " +
-                          num_text(phi) + " deg of friction from d = " + num_text(e->d) + " " + unit + "\n");
+// did not and statics does not ask for it (runs/slide_check.hpp), the DEM runs again with contact
+// damping, the first run kept beside it (SUB-undamped).
+std::optional<DampedRerun> rerun_if_unexplained_slide(const Case& c, const Case& dc, const RunResult& prd, RunResult& dem, const CompareOpts& o,
+                                                      const std::string& sub) {
+  if (o.no_damped_rerun) return std::nullopt;
+  const std::optional<SlideVerdict> v = dem_slide_verdict(c, dc, prd, dem);
+  if (!v) return std::nullopt;
+  const std::string unit = path_unit(c), joint = printable(v->slide.joint);
+  if (v->statics_asks()) {
+    progress(o.quiet, "compare: the DEM slid joint " + joint + " by " + num_text(v->slide.slip) + " m, as statics asks: every admissible force state needs more than " +
+                          num_text(dc.dem.friction_angle) + " deg of friction from d = " + num_text(v->statics_slides_at) + " " + unit + "\n");
     return std::nullopt;
   }
   const std::string dir = o.out_dir + "/" + sub, first = sub + "-undamped";
   std::filesystem::remove_all(o.out_dir + "/" + first);
   std::filesystem::rename(dir, o.out_dir + "/" + first);
+  const Case damped = with_check_damping(dc);
   DampedRerun x;
-  x.slide = *s;
-  x.friction_angle = phi;
-  if (e) x.statics_slides_at = e->d;
-  x.contact_damping = kCheckContactDamping;
+  x.slide = v->slide;
+  x.friction_angle = dc.dem.friction_angle;
+  x.statics_slides_at = v->statics_slides_at;
+  x.contact_damping = damped.dem.contact_damping;
   x.first_capacity = dem.capacity;
   x.first_status = dem.status;
   x.first_dir = first;
-  progress(o.quiet, "compare: the DEM slid joint " + printable(s->joint) + " by " + num_text(s->slip) + " m (PRD's " + num_text(s->other) +
+  progress(o.quiet, "compare: the DEM slid joint " + joint + " by " + num_text(v->slide.slip) + " m (PRD's " + num_text(v->slide.other) +
                         " m) where PRD's forces stay within friction: the DEM again, with contact damping " + num_text(x.contact_damping) + " (the first run in " +
                         first + ") ...\n");
-  const Case damped = with_option(dc, option_key(&DemOptions::contact_damping), x.contact_damping);
   RunProgress dem_progress("compare: dem", damped.motion.step * damped.motion.max_steps, 0.0, dem_step_detail, unit);
   dem = run_case(damped, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)});
   return x;
@@ -188,7 +181,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       RunProgress dem_progress("compare: dem", dc.motion.step * dc.motion.max_steps, 0.0, dem_step_detail, path_unit(c));
       results.push_back(run_case(dc, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)}));
       progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
-      std::optional<DampedRerun> rerun = rerun_if_unexplained_slide(c, dc, phi, results.front(), results.back(), o, sub);
+      std::optional<DampedRerun> rerun = rerun_if_unexplained_slide(c, dc, results.front(), results.back(), o, sub);
       if (rerun)
         progress(o.quiet, "compare: DEM with contact damping: capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " +
                               num_text(results.back().timing.total_s) + " s\n");
