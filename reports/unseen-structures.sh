@@ -125,7 +125,8 @@ for f in sorted(glob.glob(os.path.join(R, "cases", "*.json"))):
     cmp = get(os.path.join(run, "compare", "comparison.json"))
     sl = get(os.path.join(run, "sliding.json"))
     phi = case.get("dem", {}).get("friction_angle", 35)
-    row = {"case": n, "name": case["name"], "blocks": sum(1 for b in case["blocks"] if not b.get("support")), "friction": phi}
+    row = {"case": n, "name": case["name"], "blocks": sum(1 for b in case["blocks"] if not b.get("support")), "friction": phi,
+           "step": case["motion"]["step"]}
     if cmp:
         for r in cmp["runs"]:
             row[r["method"]] = {"capacity": r["capacity"], "stopped": r["stopped"], "message": r["message"], "time_s": r["time_s"],
@@ -134,6 +135,14 @@ for f in sorted(glob.glob(os.path.join(R, "cases", "*.json"))):
         s = sl.get("sliding") or {}
         row["sliding_needs"] = s.get("required_friction_angle")
         row["sliding_at"] = s.get("d")
+        # The first d where every admissible force state needs more friction than the case's: the
+        # sliding check's line in its log (prd --friction-angle).
+        try:
+            for line in open(os.path.join(run, "sliding.log")):
+                if line.startswith("prd: every admissible force state") and " first at step " in line:
+                    row["sliding_certain_from"] = float(line.split(" d = ")[1].split()[0])
+        except OSError:
+            pass
     rows.append(row)
 def verdict(r):
     p, d = r.get("prd"), r.get("dem")
@@ -147,7 +156,14 @@ def verdict(r):
     if both_end: return "both stand to the end of the path" + rerun_text(d)
     rel = (d["capacity"] - ref) / ref if ref else float("nan")
     tag = "within 3%" if abs(rel) <= 0.03 else "NOT within 3%"
-    if slides: tag = "not compared: PRD's forces need %.1f deg of friction (at d = %g), above the case's %g" % (need, r.get("sliding_at"), r["friction"])
+    if slides:
+        tag = "not compared: PRD's forces need %.1f deg of friction (at d = %g), above the case's %g" % (need, r.get("sliding_at"), r["friction"])
+        # Where sliding is certain the rigid no-sliding answer no longer stands: how far the DEM
+        # got against that d, the statics' own bound on a collapse that sliding brings on.
+        # (Not where sliding is certain from the first step: the walls', stable there.)
+        first = r.get("sliding_certain_from")
+        if first and first > 1.5 * r["step"] and d["stopped"] == "collapse":
+            tag += "; sliding certain from d = %g, the DEM's collapse %+.2f%% of that" % (first, 100 * (d["capacity"] - first) / first)
     return "%+.2f%%, %s%s" % (100 * rel, tag, rerun_text(d))
 def rerun_text(d):
     # compare ran the DEM again with contact damping (compare/README.md, "A slide statics does not ask for").
