@@ -99,36 +99,48 @@ std::string prd_label(const nlohmann::json& held) {
 }
 
 // compare/README.md, "A slide statics does not ask for": where the DEM run slid a joint PRD's
-// did not and statics does not ask for it (runs/slide_check.hpp), the DEM runs again with contact
-// damping, the first run kept beside it (SUB-undamped).
+// did not and PRD's sliding check reads the statics within the DEM's friction up to there
+// (runs/slide_check.hpp), the DEM runs again with contact damping into SUB-damped. Where that
+// removes the slide, the rerun is the DEM compared (moved to SUB, the first run to SUB-undamped);
+// where it does not, the slide was no ratchet and the first run stays.
 std::optional<DampedRerun> rerun_if_unexplained_slide(const Case& c, const Case& dc, const RunResult& prd, RunResult& dem, const CompareOpts& o,
                                                       const std::string& sub) {
   if (o.no_damped_rerun) return std::nullopt;
   const std::optional<SlideVerdict> v = dem_slide_verdict(c, dc, prd, dem);
   if (!v) return std::nullopt;
-  const std::string unit = path_unit(c), joint = printable(v->slide.joint);
-  if (v->statics_asks()) {
-    progress(o.quiet, "compare: the DEM slid joint " + joint + " by " + num_text(v->slide.slip) + " m, as statics asks: every admissible force state needs more than " +
-                          num_text(dc.dem.friction_angle) + " deg of friction from d = " + num_text(v->statics_slides_at) + " " + unit + "\n");
+  const std::string unit = path_unit(c), joint = printable(v->slide.joint), slid = "compare: the DEM slid joint " + joint + " by " + fmt::mm(v->slide.slip, 2) + " mm";
+  if (v->statics == Statics::slides) {
+    progress(o.quiet, slid + ", as statics asks: every admissible force state needs more than " + num_text(v->friction_angle) + " deg of friction at d = " +
+                          num_text(v->at_d) + " " + unit + " (joint " + printable(v->at_joint) + "): no damped rerun\n");
     return std::nullopt;
   }
-  const std::string dir = o.out_dir + "/" + sub, first = sub + "-undamped";
-  std::filesystem::remove_all(o.out_dir + "/" + first);
-  std::filesystem::rename(dir, o.out_dir + "/" + first);
+  if (v->statics == Statics::unknown) {
+    progress(o.quiet, slid + ", and statics cannot say whether it asks for that (" + v->why_unknown + "): no damped rerun\n");
+    return std::nullopt;
+  }
   const Case damped = with_check_damping(dc);
-  DampedRerun x;
-  x.slide = v->slide;
-  x.friction_angle = dc.dem.friction_angle;
-  x.statics_slides_at = v->statics_slides_at;
-  x.contact_damping = damped.dem.contact_damping;
-  x.first_capacity = dem.capacity;
-  x.first_status = dem.status;
-  x.first_dir = first;
-  progress(o.quiet, "compare: the DEM slid joint " + joint + " by " + num_text(v->slide.slip) + " m (PRD's " + num_text(v->slide.other) +
-                        " m) where PRD's forces stay within friction: the DEM again, with contact damping " + num_text(x.contact_damping) + " (the first run in " +
-                        first + ") ...\n");
+  DampedRerun x = damped_rerun(*v, damped, dem);
+  const std::string first = sub + "-undamped", second = sub + "-damped";
+  progress(o.quiet, slid + " where some admissible force state stays within " + num_text(v->friction_angle) +
+                        " deg of friction (it needs at most " + fmt::g(v->needs) + " deg): the DEM again, with contact damping " + num_text(x.contact_damping) +
+                        " ...\n");
   RunProgress dem_progress("compare: dem", damped.motion.step * damped.motion.max_steps, 0.0, dem_step_detail, unit);
-  dem = run_case(damped, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)});
+  RunResult rerun = run_case(damped, Method::dem, {o.out_dir + "/" + second, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)});
+  read_rerun(c, prd, rerun, x);
+  if (x.removed) {
+    std::filesystem::rename(o.out_dir + "/" + sub, o.out_dir + "/" + first);
+    std::filesystem::rename(o.out_dir + "/" + second, o.out_dir + "/" + sub);
+    dem = std::move(rerun);
+    x.first_dir = first;
+    x.rerun_dir = sub;
+    progress(o.quiet, "compare: with contact damping the DEM's joints slide at most " + fmt::g(x.rerun_slip * 1e3, 2) + " mm: it is the DEM compared (the first run in " + first +
+                          ")\n");
+  } else {
+    x.first_dir = sub;
+    x.rerun_dir = second;
+    progress(o.quiet, "compare: with contact damping the DEM still slides (" + fmt::mm(x.rerun_slip, 2) + " mm): no ratchet, the first run stays the DEM compared (the damped one in " +
+                          second + ")\n");
+  }
   return x;
 }
 
@@ -178,11 +190,13 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       const std::string sub = phis.size() == 1 ? "dem" : "dem-phi" + num_text(phi);
       const std::string dir = o.out_dir + "/" + sub;
       progress(o.quiet, "compare: DEM (friction " + num_text(phi) + " deg) on " + c.name + " ...\n");
+      // What an earlier comparison in this directory left of a damped rerun is not this one's.
+      for (const char* tail : {"-undamped", "-damped"}) std::filesystem::remove_all(dir + tail);
       RunProgress dem_progress("compare: dem", dc.motion.step * dc.motion.max_steps, 0.0, dem_step_detail, path_unit(c));
       results.push_back(run_case(dc, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)}));
       progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
       std::optional<DampedRerun> rerun = rerun_if_unexplained_slide(c, dc, results.front(), results.back(), o, sub);
-      if (rerun)
+      if (rerun && rerun->removed)
         progress(o.quiet, "compare: DEM with contact damping: capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " +
                               num_text(results.back().timing.total_s) + " s\n");
       runs.push_back({dem_label(phi), nullptr, sub});

@@ -172,8 +172,8 @@ void add_validate_commands(CLI::App& app, Commands& out) {
                          cat, *todo[k], cache,
                          [&](const ValidationRow& r) {
                            if (o->quiet) return;
-                           const char* verdict = !r.applicable ? "n/a" : r.pass ? "pass" : r.solver_error ? "ERROR" : "FAIL";
-                           char b[48];
+                           const char* verdict = !r.applicable ? "n/a" : r.pass ? (r.damped_rerun ? "pass (damped rerun)" : "pass") : r.solver_error ? "ERROR" : "FAIL";
+                           char b[64];
                            std::snprintf(b, sizeof b, ": %s in %.2f s", verdict, r.seconds);
                            std::cerr << progress.line(k + 1, r.benchmark->name + " (" + r.method_label + ")" + b) << "\n" << std::flush;
                          },

@@ -139,23 +139,6 @@ struct SlipCheck {
 // A joint whose corner in contact opened by more than min_gap came apart, and is left out.
 SlipCheck slip_check(const Case& c, const RunResult& a, const RunResult& b, double to, double min_gap);
 
-// A slide run b made that run a did not (compare/README.md, "A slide statics does not ask for"):
-// at the joint b slid most, b's net slip over the common range is more than kUnexplainedSlide of
-// the supports' largest travel there (path_travel_per_d x b's last record's d) and a's is less.
-// A rigid-block mechanism without sliding slides no joint, elastic shear is microns (the standard
-// scenes' DEM runs: at most 6e-5 of the travel), while a DEM ratcheting on joints stiff against
-// the weights slides 0.13 to 2.3 of it (dem/README.md, "Contact damping"). Whether statics asks
-// for the slide (friction too small for every admissible force state) is PRD's sliding check,
-// which the caller runs: this reads the two runs only.
-constexpr double kUnexplainedSlide = 0.01;
-struct SlideSuspect {
-  std::string joint;  // joint_name (case text: escape before display)
-  double slip = 0.0;    // m, run b's net slip there
-  double other = 0.0;   // m, run a's there (NaN: its joint came apart)
-  double travel = 0.0;  // m, the supports' largest travel up to `to`
-  double to = 0.0;      // d of run b's last record in the common range
-};
-
 // Where a run's structure jumped between two consecutive stable records (compare/README.md,
 // "Jumps"; compare/jumps.cpp): a free block moved more than kJumpRatio times as far as the
 // supports carried any point (path_travel_per_d x the change of d), and more than kJumpFloor of
@@ -217,9 +200,6 @@ struct Comparison {
   // and forces at every record.
   std::string thrust_skipped, hinges_skipped, mechanism_skipped;
 };
-
-// Run b's slide of kUnexplainedSlide (above), from the comparison's sliding check; none without one.
-std::optional<SlideSuspect> slide_suspect(const Case& c, const Comparison& k);
 
 // Where two runs' thrust curves are compared.
 enum class ThrustGrid {

@@ -148,17 +148,24 @@ ojson report_json(const Report& r) {
     if (rr.prd_on_run) runs.back()["prd_on_run"] = prd_on_run_json(*rr.prd_on_run);
     if (rr.rerun) {
       const DampedRerun& x = *rr.rerun;
-      runs.back()["damped_rerun"] = {{"joint", x.slide.joint},
-                                     {"slip", json_number(x.slide.slip)},
-                                     {"other_slip", json_number(x.slide.other)},
-                                     {"travel", json_number(x.slide.travel)},
-                                     {"to", json_number(x.slide.to)},
-                                     {"friction_angle", json_number(x.friction_angle)},
-                                     {"statics_slides_at", json_number(x.statics_slides_at)},
+      const SlideVerdict& v = x.verdict;
+      runs.back()["damped_rerun"] = {{"joint", v.slide.joint},
+                                     {"slip", json_number(v.slide.slip)},
+                                     {"other_slip", json_number(v.slide.other)},
+                                     {"travel", json_number(v.slide.travel)},
+                                     {"to", json_number(v.slide.to)},
+                                     {"friction_angle", json_number(v.friction_angle)},
+                                     {"statics_needs", json_number(v.needs)},
+                                     {"statics_needs_at", json_number(v.at_d)},
+                                     {"statics_joint", v.at_joint},
                                      {"contact_damping", json_number(x.contact_damping)},
                                      {"first_capacity", json_number(x.first_capacity)},
                                      {"first_stopped", status_name(x.first_status)},
-                                     {"first_dir", x.first_dir}};
+                                     {"first_time_s", json_number(x.first_time_s)},
+                                     {"rerun_slip", json_number(x.rerun_slip)},
+                                     {"removed", x.removed},
+                                     {"first_dir", x.first_dir},
+                                     {"rerun_dir", x.rerun_dir}};
     }
   }
   j["runs"] = runs;
@@ -189,6 +196,10 @@ std::string run_labels(const Report& r) {
   for (size_t k = 0; k < r.runs.size(); ++k) labels += (k ? (k + 1 == r.runs.size() ? " and " : ", ") : "") + r.runs[k].label;
   return labels;
 }
+
+// A joint's slip in mm to the micron (elastic shear is microns, friction slip millimetres); "n/a"
+// where its joint came apart.
+std::string slip_mm(double m) { return std::isfinite(m) ? fmt::number(m * 1e3, "%.3f", m * 1e3) + " mm" : std::string("n/a"); }
 
 const Figure* find_figure(const std::vector<Figure>& figures, const std::string& file) {
   for (const Figure& f : figures)
@@ -483,35 +494,50 @@ void mechanism_section(Document& d, const Report& r, const Comparison& cmp) {
   }
   d.table(std::move(t));
   if (cmp.sliding && cmp.sliding->largest_a.joint >= 0) {
-    // In mm to the micron: elastic shear is microns, friction slip millimetres.
-    const auto len = [](double m) { return std::isfinite(m) ? fmt::number(m * 1e3, "%.3f", m * 1e3) + " mm" : std::string("n/a"); };
     const SlipCheck& s = *cmp.sliding;
     d.paragraph({"Sliding: how far each run's joints slid along themselves from d = 0 to the end of the common range (" + fmt::mm(s.a_to) + " " + unit +
                  " in " + cmp.a.label + ", " + fmt::mm(s.b_to) + " " + unit + " in " + cmp.b.label +
                  "), at the corner of each joint that opened less, the one in contact (blocks turning about a hinge slide nowhere there; a "
-                 "joint's elastic shear is microns). Most in " + cmp.a.label + ": " + s.largest_a.label + ", " + len(s.largest_a.a) + " (" + cmp.b.label +
-                 " " + len(s.largest_a.b) + " there); most in " + cmp.b.label + ": " + s.largest_b.label + ", " + len(s.largest_b.b) + " (" +
-                 cmp.a.label + " " + len(s.largest_b.a) + " there). Where one method's joints slid and the other's did not, the two "
+                 "joint's elastic shear is microns). Most in " + cmp.a.label + ": " + s.largest_a.label + ", " + slip_mm(s.largest_a.a) + " (" + cmp.b.label +
+                 " " + slip_mm(s.largest_a.b) + " there); most in " + cmp.b.label + ": " + s.largest_b.label + ", " + slip_mm(s.largest_b.b) + " (" +
+                 cmp.a.label + " " + slip_mm(s.largest_b.a) + " there). Where one method's joints slid and the other's did not, the two "
                  "answer for different mechanisms; a DEM whose joints slid where PRD's mechanism turns about hinges and its friction "
                  "suffices may have joints stiff against the weights (dem/README.md, \"Contact damping\")."});
   }
-  // The run of this comparison is compare's damped rerun of another: say why and what it changed.
-  for (const ReportRun& rr : r.runs) {
-    if (!rr.rerun || rr.run == nullptr || rr.label != cmp.b.label) continue;
-    const DampedRerun& x = *rr.rerun;
-    const auto len = [](double m) { return std::isfinite(m) ? fmt::number(m * 1e3, "%.3f", m * 1e3) + " mm" : std::string("n/a"); };
-    d.paragraph({"A slide statics does not ask for: " + cmp.b.label + " is a rerun with contact damping " + fmt::g(x.contact_damping) +
-                 ". Its first run (" + x.first_dir + ", " + status_name(x.first_status) + " at " + fmt::mm(x.first_capacity) + " " + unit +
-                 ") slid joint " + x.slide.joint + " by " + len(x.slide.slip) + " up to d = " + fmt::mm(x.slide.to) + " " + unit + ", " +
-                 fmt::number(x.slide.slip / x.slide.travel * 100, "%.1f%%", x.slide.slip / x.slide.travel * 100) + " of the supports' largest travel (" + len(x.slide.travel) + "), where " + cmp.a.label +
-                 "'s joint slid " + len(x.slide.other) + "; and PRD's sliding check at " + fmt::g(x.friction_angle) +
-                 " degrees finds a force state within friction at every step " +
-                 (std::isfinite(x.statics_slides_at) ? "before d = " + fmt::mm(x.statics_slides_at) + " " + unit : std::string("of its path")) +
-                 ". A slide the weights do not need is the joints' vibration ratcheting them (joints stiff against the weights: "
-                 "dem/README.md, \"Contact damping\"), which contact damping removes without changing the statics; rerun the "
-                 "comparison with --no-damped-rerun to keep the first run."});
-  }
   jumps_paragraph(d, cmp, unit);
+}
+
+// How a run ended, in words: "collapsed at 31 mrad", "stood to the end of its path (400 mm)".
+std::string ended_at(RunStatus s, double d, const std::string& unit) {
+  const std::string at = fmt::mm(d, 2) + " " + unit;
+  switch (s) {
+    case RunStatus::collapse: return "collapsed at " + at;
+    case RunStatus::max_steps: return "stood to the end of its path (" + at + ")";
+    default: return std::string(status_name(s)) + " at " + at;
+  }
+}
+
+// compare/README.md, "A slide statics does not ask for": why a DEM run was run again with contact
+// damping, what the rerun showed, and which of the two this comparison is of.
+void damped_rerun_paragraph(Document& d, const Comparison& cmp, const DampedRerun& x, const std::string& unit) {
+  const SlideVerdict& v = x.verdict;
+  const std::string pct = fmt::number(v.slide.slip / v.slide.travel * 100, "%.1f%%", v.slide.slip / v.slide.travel * 100);
+  std::string p = "A slide statics does not ask for: the DEM's first run (" + x.first_dir + ", " + ended_at(x.first_status, x.first_capacity, unit) +
+                  ") slid joint " + v.slide.joint + " by " + slip_mm(v.slide.slip) + " up to d = " + fmt::mm(v.slide.to, 2) + " " + unit + ", " + pct +
+                  " of the supports' largest travel (" + fmt::mm(v.slide.travel, 1) + " mm), where " + cmp.a.label + "'s joint " +
+                  (std::isfinite(v.slide.other) ? "slid " + slip_mm(v.slide.other) : std::string("came apart")) + "; and PRD's sliding check at " +
+                  fmt::g(v.friction_angle) + " degrees finds some admissible force state within friction at every step up to there (the most any step needs: " +
+                  fmt::g(v.needs) + " degrees, at d = " + fmt::mm(v.at_d, 2) + " " + unit + (v.at_joint.empty() ? "" : ", joint " + v.at_joint) +
+                  "). So statics alone does not ask for the slide; the likely cause is the vibration of joints stiff against the weights ratcheting "
+                  "them (dem/README.md, \"Contact damping\"), which a rerun with contact damping " + fmt::g(x.contact_damping) + " tests. ";
+  if (x.removed)
+    p += "With it the DEM's joints slid at most " + slip_mm(x.rerun_slip) + ": the slide was that ratchet, and " + cmp.b.label +
+         " here is the rerun (" + x.rerun_dir + "). --no-damped-rerun keeps the first run instead.";
+  else
+    p += "With it the DEM still slid " + slip_mm(x.rerun_slip) + " (" + x.rerun_dir +
+         "): no ratchet, but a slide the DEM's own force state asks for (its elastic joints may need more friction than the least PRD finds), "
+         "so " + cmp.b.label + " here is the first run.";
+  d.paragraph({p});
 }
 
 void comparison_section(Document& d, const Report& r, size_t k, const std::vector<Figure>& figures, bool page) {
@@ -519,6 +545,7 @@ void comparison_section(Document& d, const Report& r, size_t k, const std::vecto
   const std::string n = std::to_string(k + 1);
   const std::string unit = d_unit(r);
   d.heading(2, {cmp.a.label + " against " + cmp.b.label});
+  if (k + 1 < r.runs.size() && r.runs[k + 1].rerun) damped_rerun_paragraph(d, cmp, *r.runs[k + 1].rerun, unit);
   d.heading(3, {"Thrust curves"});
   std::string p = "Horizontal (H) and vertical (V) reaction of every support over the total weight W = " + fmt::kn(cmp.total_weight) +
                   " kN, against d. Compared on the common range d = 0 to " + fmt::mm(cmp.d_max) + " " + unit + " (" + std::to_string(cmp.d.size()) +

@@ -3,37 +3,22 @@
 // inline script, no network; a slider steps through d).
 #pragma once
 
-#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "compare/compare.hpp"
+#include "compare/slide.hpp"
 #include "report/document.hpp"
 
 namespace masonry {
-
-// A DEM run that `compare` made again with contact damping, because the first slid along a joint
-// where the reference run did not and statics does not ask for it (compare/README.md, "A slide
-// statics does not ask for"; app/compare_commands.cpp).
-struct DampedRerun {
-  SlideSuspect slide;            // the first run's, against the reference run
-  double friction_angle = 0.0;   // deg, the DEM's
-  // d of PRD's first step where every admissible force state needs more friction than that
-  // (prd first_sliding), NaN at none: beyond slide.to, or there would be no rerun.
-  double statics_slides_at = std::numeric_limits<double>::quiet_NaN();
-  double contact_damping = 0.0;  // the rerun's zeta
-  double first_capacity = 0.0;   // the first run's, d_unit
-  RunStatus first_status = RunStatus::collapse;
-  std::string first_dir;  // the first run's results directory, relative to the report
-};
 
 struct ReportRun {
   std::string label;  // "PRD", "DEM phi=35 deg"
   const RunResult* run = nullptr;
   std::string dir;                                    // its results directory, relative to the report (may be empty)
   std::optional<PrdOnRun> prd_on_run = std::nullopt;  // a DEM run: PRD on its deformed configuration (runs/run.hpp)
-  std::optional<DampedRerun> rerun = std::nullopt;    // this run is compare's damped rerun of another
+  std::optional<DampedRerun> rerun = std::nullopt;    // a DEM run compare ran again with contact damping (this run or its rerun)
 };
 
 // runs[0] is the reference; comparisons[k] compares runs[0] with runs[k + 1].

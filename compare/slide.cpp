@@ -1,5 +1,7 @@
-// A slide one run made and the other did not, against the supports' travel (compare.hpp,
-// slide_suspect; compare/README.md, "A slide statics does not ask for").
+// A slide one run made and the other did not, against the supports' travel (compare/slide.hpp;
+// compare/README.md, "A slide statics does not ask for").
+#include "compare/slide.hpp"
+
 #include <cmath>
 
 #include "compare/compare.hpp"

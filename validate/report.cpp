@@ -41,7 +41,7 @@ std::string cell_expected_or_none(const ValidationRow& r) { return r.applicable 
 // pass, FAIL (a wrong answer, or none), ERROR (an outside solver failed), n/a.
 std::string verdict(const ValidationRow& r) {
   if (!r.applicable) return "n/a";
-  if (r.pass) return "pass";
+  if (r.pass) return r.damped_rerun ? "pass (damped rerun)" : "pass";
   return r.solver_error ? "ERROR" : "FAIL";
 }
 
@@ -76,6 +76,8 @@ std::string tally(const std::vector<ValidationRow>& rows) {
   const int na = not_applicable(rows);
   std::string s = std::to_string(passed(rows)) + " of " + std::to_string(rows.size() - na) + " passed";
   if (na > 0) s += ", " + std::to_string(na) + " not applicable";
+  const auto damped = std::count_if(rows.begin(), rows.end(), [](const ValidationRow& r) { return r.pass && r.damped_rerun; });
+  if (damped > 0) s += " (" + std::to_string(damped) + " of them by a DEM rerun with contact damping)";
   return s;
 }
 
@@ -158,6 +160,7 @@ nlohmann::ordered_json validation_json(const Catalogue& cat, const std::vector<V
     }
     x["tolerance"] = r.tolerance;
     x["pass"] = r.pass;
+    x["damped_rerun"] = r.damped_rerun;
     x["applicable"] = r.applicable;
     x["solver_error"] = r.solver_error;
     x["seconds"] = r.seconds;

@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -21,25 +20,15 @@ namespace fs = std::filesystem;
 using test::Scratch;
 const std::string kExe = MASONRY_EXE;
 
-// The jack arch with every length times k (its support only turns: d stays in rad).
-std::string scaled_jack_arch(const Scratch& dir, double k) {
-  nlohmann::json c = nlohmann::json::parse(test::read(std::string(MASONRY_SOURCE_DIR) + "/cases/zoo/jack-arch.json"));
-  for (auto& b : c["blocks"])
-    for (auto& v : b["vertices"]) v = {v[0].get<double>() * k, v[1].get<double>() * k};
-  for (auto& s : c["motion"]["supports"]) {
-    EXPECT_EQ(s["translation"], nlohmann::json({0.0, 0.0}));
-    s["about"] = {s["about"][0].get<double>() * k, s["about"][1].get<double>() * k};
-  }
-  const std::string path = (dir.path / "jack.json").string();
-  std::ofstream(path) << c.dump();
-  return path;
-}
+// The jack arch scaled by 0.05, as reports/unseen-structures.sh makes it (its lengths and the
+// turning support's centre times 0.05; d stays in rad).
+const std::string kJack = std::string(MASONRY_SOURCE_DIR) + "/reports/unseen-structures/cases/jack-scale-0.05.json";
 
 nlohmann::json comparison(const fs::path& out) { return nlohmann::json::parse(test::read(out / "comparison.json")); }
 
 TEST(CompareRerun, ADemJointSlidWhereStaticsDoesNotAskIsRunAgainWithContactDamping) {
   Scratch dir("compare-rerun");
-  const std::string c = scaled_jack_arch(dir, 0.05);
+  const std::string& c = kJack;
   const fs::path out = dir.path / "o";
   ASSERT_EQ(test::run(kExe + " compare " + c + " --out " + out.string() + " --quiet --frames 2 >/dev/null 2>&1"), 0);
   const nlohmann::json j = comparison(out);
@@ -51,8 +40,16 @@ TEST(CompareRerun, ADemJointSlidWhereStaticsDoesNotAskIsRunAgainWithContactDampi
   EXPECT_GT(x["contact_damping"].get<double>(), 0.0);
   EXPECT_GT(x["slip"].get<double>(), 0.01 * x["travel"].get<double>());
   EXPECT_EQ(x["friction_angle"], 35.0);
+  EXPECT_LT(x["statics_needs"].get<double>(), 35.0);
+  // The rerun removed the slide: the compared DEM's joints slid less than the rule's 1%, and that
+  // is what the comparison's own sliding check reads of it.
+  EXPECT_EQ(x["removed"], true);
+  EXPECT_LT(x["rerun_slip"].get<double>(), 0.01 * x["travel"].get<double>());
+  EXPECT_EQ(x["rerun_slip"], j["comparisons"][0]["sliding"]["largest_b"]["b"]);
+  EXPECT_EQ(x["rerun_dir"], "dem");
   // The first run is kept beside the rerun, and the report says why it was made.
   EXPECT_TRUE(fs::exists(out / x["first_dir"].get<std::string>() / "results.json"));
+  EXPECT_FALSE(fs::exists(out / "dem-damped"));
   EXPECT_NE(test::read(out / "report.md").find("A slide statics does not ask for"), std::string::npos);
 
   // --no-damped-rerun keeps the first run: the slide the rerun answered is in its sliding check.
@@ -63,6 +60,9 @@ TEST(CompareRerun, ADemJointSlidWhereStaticsDoesNotAskIsRunAgainWithContactDampi
   EXPECT_FALSE(k["runs"][1].contains("damped_rerun"));
   EXPECT_EQ(k["runs"][1]["settings"]["contact_damping"], 0.0);
   EXPECT_FALSE(fs::exists(kept / "dem-undamped"));
+  // Into the directory of the first comparison: what its rerun left there goes.
+  ASSERT_EQ(test::run(kExe + " compare " + c + " --out " + out.string() + " --quiet --frames 2 --no-damped-rerun >/dev/null 2>&1"), 0);
+  EXPECT_FALSE(fs::exists(out / "dem-undamped"));
   EXPECT_EQ(k["runs"][1]["capacity"], x["first_capacity"]);
   EXPECT_EQ(k["comparisons"][0]["sliding"]["largest_b"]["joint"], x["joint"]);
   EXPECT_EQ(k["comparisons"][0]["sliding"]["largest_b"]["b"], x["slip"]);

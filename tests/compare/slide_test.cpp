@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "compare/compare.hpp"
+#include "compare/slide.hpp"
 #include "model/case.hpp"
 
 namespace masonry {

@@ -211,14 +211,7 @@ def main():
     # A comparison whose DEM run is a damped rerun (runs[].damped_rerun): the zoo's jack arch scaled
     # by 0.05, whose undamped DEM slides its skewback where PRD's forces stay within friction
     # (tests/app/compare_rerun_test.cpp).
-    jack = load(os.path.join(src, "cases", "zoo", "jack-arch.json"))
-    for b in jack["blocks"]:
-        b["vertices"] = [[0.05 * x, 0.05 * y] for x, y in b["vertices"]]
-    for m in jack["motion"]["supports"]:
-        m["about"] = [0.05 * m["about"][0], 0.05 * m["about"][1]]
-    jack_path = os.path.join(tmp, "jack-0.05.json")
-    with open(jack_path, "w") as f:
-        json.dump(jack, f)
+    jack_path = os.path.join(src, "reports", "unseen-structures", "cases", "jack-scale-0.05.json")
     rerun = os.path.join(tmp, "compare-rerun")
     run(exe, "compare", jack_path, "--out", rerun, "--quiet", "--frames", "2")
     path = os.path.join(rerun, "comparison.json")
