@@ -169,8 +169,11 @@ def rerun_text(d):
     # compare ran the DEM again with contact damping (compare/README.md, "A slide statics does not ask for").
     x = d.get("damped_rerun")
     if not x: return ""
-    return "; the DEM's damped rerun: its first run slid %s by %.2f mm (%.1f%% of the supports' travel), ending %s at %.5g" % (
-        x["joint"], 1e3 * x["slip"], 100 * x["slip"] / x["travel"], x["first_stopped"], x["first_capacity"])
+    if not x["removed"]:
+        return "; the DEM slid %s by %.2f mm where statics does not ask, and still %.2f mm with contact damping: the first run" % (
+            x["joint"], 1e3 * x["slip"], 1e3 * x["rerun_slip"])
+    return "; the DEM's damped rerun: its first run slid %s by %.2f mm (%.1f%% of the supports' travel; damped %.3g mm), ending %s at %.5g" % (
+        x["joint"], 1e3 * x["slip"], 100 * x["slip"] / x["travel"], 1e3 * x["rerun_slip"], x["first_stopped"], x["first_capacity"])
 lines = ["# Structures neither method was tuned on: the table", "",
          "Made by `bash reports/unseen-structures.sh` (the cases in `cases/`; each one's comparison report in `runs/<case>/compare/`, not in git: the script writes them); read with README.md.",
          "PRD (located: the comparison's PRD on the case's own geometry, events located to the DEM's bracket) against the DEM at the case's own settings (where `compare` ran it again with contact damping, the rerun's capacity and CPU); the sliding column is PRD's sliding check at the case's friction angle (the least angle any admissible force state needs over the path). SI units: d in m, or rad where the supports only turn.", "",
