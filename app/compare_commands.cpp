@@ -105,10 +105,19 @@ std::string prd_label(const nlohmann::json& held) {
 // where it does not, the slide was no ratchet and the first run stays.
 std::optional<DampedRerun> rerun_if_unexplained_slide(const Case& c, const Case& dc, const RunResult& prd, RunResult& dem, const CompareOpts& o,
                                                       const std::string& sub) {
-  if (o.no_damped_rerun) return std::nullopt;
+  if (o.no_damped_rerun) {
+    // Said even with --quiet: the first run is kept on the user's word, not unread.
+    if (const std::optional<SlideSuspect> s = dem_slide(c, dc, prd, dem))
+      std::cerr << "compare: note: the DEM slid joint " << printable(s->joint) << " by " << fmt::mm(s->slip, 2) << " mm ("
+                << fmt::g(100 * s->slip / s->travel, 2) << "% of the supports' travel) where PRD's did not; --no-damped-rerun: neither read against "
+                << "statics nor run again with contact damping (compare/README.md, \"A slide statics does not ask for\")\n";
+    return std::nullopt;
+  }
   const std::optional<SlideVerdict> v = dem_slide_verdict(c, dc, prd, dem);
   if (!v) return std::nullopt;
-  const std::string unit = path_unit(c), joint = printable(v->slide.joint), slid = "compare: the DEM slid joint " + joint + " by " + fmt::mm(v->slide.slip, 2) + " mm";
+  const std::string unit = path_unit(c), joint = printable(v->slide.joint),
+                    slid = "compare: the DEM slid joint " + joint + " by " + fmt::mm(v->slide.slip, 2) + " mm (" + fmt::g(100 * v->slide.slip / v->slide.travel, 2) +
+                           "% of the supports' travel, " + sub + ")";
   if (v->statics == Statics::slides) {
     progress(o.quiet, slid + ", as statics asks: every admissible force state needs more than " + num_text(v->friction_angle) + " deg of friction at d = " +
                           num_text(v->at_d) + " " + unit + " (joint " + printable(v->at_joint) + "): no damped rerun\n");
@@ -124,7 +133,7 @@ std::optional<DampedRerun> rerun_if_unexplained_slide(const Case& c, const Case&
   progress(o.quiet, slid + " where some admissible force state stays within " + num_text(v->friction_angle) +
                         " deg of friction (it needs at most " + fmt::g(v->needs) + " deg): the DEM again, with contact damping " + num_text(x.contact_damping) +
                         " ...\n");
-  RunProgress dem_progress("compare: dem", damped.motion.step * damped.motion.max_steps, 0.0, dem_step_detail, unit);
+  RunProgress dem_progress("compare: dem (damped)", damped.motion.step * damped.motion.max_steps, 0.0, dem_step_detail, unit);
   RunResult rerun = run_case(damped, Method::dem, {o.out_dir + "/" + second, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)});
   read_rerun(c, prd, rerun, x);
   if (x.removed) {
@@ -145,6 +154,7 @@ std::optional<DampedRerun> rerun_if_unexplained_slide(const Case& c, const Case&
 }
 
 int run_compare(const Case& c, const CompareOpts& o, const std::string& case_shown) {
+  std::vector<Case> dem_cases;  // one per friction angle, where compare runs the DEM
   std::optional<Tolerances> tol;
   if (!o.tolerances.empty()) tol = load_tolerances(o.tolerances);  // fail before any long run
   std::vector<RunResult> results;
@@ -175,7 +185,6 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
     std::vector<double> phis = o.frictions;
     if (phis.empty()) phis.push_back(c.dem.friction_angle);
     const Case dem_case = o.dem_step ? with_option(c, option_key(&Motion::step), *o.dem_step) : c;
-    std::vector<Case> dem_cases;  // one per friction angle
     for (double phi : phis) dem_cases.push_back(with_option(dem_case, option_key(&DemOptions::friction_angle), phi));
     // The DEM's refusals before PRD runs (a large case's PRD can take minutes).
     for (const Case& dc : dem_cases) dem_check(dc, DemSettings::from_case(dc));
@@ -195,23 +204,37 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       RunProgress dem_progress("compare: dem", dc.motion.step * dc.motion.max_steps, 0.0, dem_step_detail, path_unit(c));
       results.push_back(run_case(dc, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)}));
       progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
-      std::optional<DampedRerun> rerun = rerun_if_unexplained_slide(c, dc, results.front(), results.back(), o, sub);
-      if (rerun && rerun->removed)
-        progress(o.quiet, "compare: DEM with contact damping: capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " +
-                              num_text(results.back().timing.total_s) + " s\n");
       runs.push_back({dem_label(phi), nullptr, sub});
-      runs.back().rerun = rerun;
     }
   }
-  for (size_t k = 0; k < runs.size(); ++k) {
-    runs[k].run = &results[k];
-    runs[k].prd_on_run = prd_on_run(c, results[k]);
+  const auto report = [&]() {
+    for (size_t k = 0; k < runs.size(); ++k) {
+      runs[k].run = &results[k];
+      runs[k].prd_on_run = prd_on_run(c, results[k]);
+    }
+    Report rep = make_report(c, runs, tol ? &*tol : nullptr);
+    rep.command = command_line(o, case_shown);
+    rep.frames = o.frames;
+    if (!o.notes.empty()) rep.notes = read_notes(o.notes);
+    write_report(o.out_dir, rep);
+    return rep;
+  };
+  Report rep = report();
+  // The comparison of the first runs is written before any damped rerun, which can take longer
+  // than they did: a rerun stopped or failed leaves it, and one that finishes rewrites it.
+  if (o.runs.empty()) {
+    bool again = false;
+    for (size_t k = 1; k < runs.size(); ++k) {
+      const Case& dc = dem_cases[k - 1];
+      runs[k].rerun = rerun_if_unexplained_slide(c, dc, results.front(), results[k], o, runs[k].dir);
+      if (!runs[k].rerun) continue;
+      again = true;
+      if (runs[k].rerun->removed)
+        progress(o.quiet, "compare: DEM with contact damping: capacity " + num_text(results[k].capacity) + " " + path_unit(c) + ", " +
+                              num_text(results[k].timing.total_s) + " s\n");
+    }
+    if (again) rep = report();
   }
-  Report rep = make_report(c, runs, tol ? &*tol : nullptr);
-  rep.command = command_line(o, case_shown);
-  rep.frames = o.frames;
-  if (!o.notes.empty()) rep.notes = read_notes(o.notes);
-  write_report(o.out_dir, rep);
   bool failed = false, errored = false;
   for (const RunResult& r : results) errored = errored || !located(r.status);
   for (size_t k = 0; k < rep.comparisons.size(); ++k) {

@@ -50,10 +50,14 @@ void read_statics(const Case& c, const RunResult& check, double phi, SlideVerdic
   v.at_joint = most_joint;
 }
 
-std::optional<SlideVerdict> dem_slide_verdict(const Case& c, const Case& dem_case, const RunResult& prd, const RunResult& dem) {
+std::optional<SlideSuspect> dem_slide(const Case& c, const Case& dem_case, const RunResult& prd, const RunResult& dem) {
   if (dem_case.dem.contact_damping > 0 || known_method(prd) != Method::prd || known_method(dem) != Method::dem) return std::nullopt;
   if (prd.status == RunStatus::error || dem.status == RunStatus::error) return std::nullopt;
-  const std::optional<SlideSuspect> s = slide_suspect(c, compare_runs(c, prd, dem));
+  return slide_suspect(c, compare_runs(c, prd, dem));
+}
+
+std::optional<SlideVerdict> dem_slide_verdict(const Case& c, const Case& dem_case, const RunResult& prd, const RunResult& dem) {
+  const std::optional<SlideSuspect> s = dem_slide(c, dem_case, prd, dem);
   if (!s) return std::nullopt;
   PrdSettings ps = PrdSettings::from_case(c);
   ps.sliding_check = true;

@@ -17,6 +17,8 @@ namespace masonry {
 // kUnexplainedSlide (slide_suspect); else the slide with what PRD's sliding check at the DEM's
 // friction angle (a PRD run of its own) says of the steps up to its end.
 std::optional<SlideVerdict> dem_slide_verdict(const Case& c, const Case& dem_case, const RunResult& prd, const RunResult& dem);
+// The slide alone, without the statics' reading (the same gates).
+std::optional<SlideSuspect> dem_slide(const Case& c, const Case& dem_case, const RunResult& prd, const RunResult& dem);
 
 // What PRD's sliding check run `check` (of `c`, every step with its sliding record) says of the
 // steps up to v.slide.to and the first at or past it, at friction angle phi (deg): v.statics,

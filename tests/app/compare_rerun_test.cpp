@@ -54,8 +54,11 @@ TEST(CompareRerun, ADemJointSlidWhereStaticsDoesNotAskIsRunAgainWithContactDampi
 
   // --no-damped-rerun keeps the first run: the slide the rerun answered is in its sliding check.
   const fs::path kept = dir.path / "kept";
-  const int rc = test::run(kExe + " compare " + c + " --out " + kept.string() + " --quiet --frames 2 --no-damped-rerun >/dev/null 2>&1");
+  const fs::path err = dir.path / "kept.err";
+  const int rc = test::run(kExe + " compare " + c + " --out " + kept.string() + " --quiet --frames 2 --no-damped-rerun >/dev/null 2>" + err.string());
   EXPECT_EQ(rc, 0);
+  // Even with --quiet the slide it kept is said.
+  EXPECT_NE(test::read(err).find("compare: note: the DEM slid joint jamb-R/v4"), std::string::npos) << test::read(err);
   const nlohmann::json k = comparison(kept);
   EXPECT_FALSE(k["runs"][1].contains("damped_rerun"));
   EXPECT_EQ(k["runs"][1]["settings"]["contact_damping"], 0.0);
