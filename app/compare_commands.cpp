@@ -98,6 +98,10 @@ std::string prd_label(const nlohmann::json& held) {
   return label;
 }
 
+// Where a DEM run's damped rerun keeps the run it did not compare: SUB + one of these.
+constexpr const char* kUndamped = "-undamped";
+constexpr const char* kDamped = "-damped";
+
 // compare/README.md, "A slide statics does not ask for": where the DEM run slid a joint PRD's
 // did not and PRD's sliding check reads the statics within the DEM's friction up to there
 // (runs/slide_check.hpp), the DEM runs again with contact damping into SUB-damped. Where that
@@ -129,7 +133,7 @@ std::optional<DampedRerun> rerun_if_unexplained_slide(const Case& c, const Case&
   }
   const Case damped = with_check_damping(dc);
   DampedRerun x = damped_rerun(*v, damped, dem);
-  const std::string first = sub + "-undamped", second = sub + "-damped";
+  const std::string first = sub + kUndamped, second = sub + kDamped;
   progress(o.quiet, slid + " where some admissible force state stays within " + num_text(v->friction_angle) +
                         " deg of friction (it needs at most " + fmt::g(v->needs) + " deg): the DEM again, with contact damping " + num_text(x.contact_damping) +
                         " ...\n");
@@ -200,7 +204,7 @@ int run_compare(const Case& c, const CompareOpts& o, const std::string& case_sho
       const std::string dir = o.out_dir + "/" + sub;
       progress(o.quiet, "compare: DEM (friction " + num_text(phi) + " deg) on " + c.name + " ...\n");
       // What an earlier comparison in this directory left of a damped rerun is not this one's.
-      for (const char* tail : {"-undamped", "-damped"}) std::filesystem::remove_all(dir + tail);
+      for (const char* tail : {kUndamped, kDamped}) std::filesystem::remove_all(dir + tail);
       RunProgress dem_progress("compare: dem", dc.motion.step * dc.motion.max_steps, 0.0, dem_step_detail, path_unit(c));
       results.push_back(run_case(dc, Method::dem, {dir, o.quiet ? std::function<void(const RunResult&)>() : std::ref(dem_progress)}));
       progress(o.quiet, "compare: DEM capacity " + num_text(results.back().capacity) + " " + path_unit(c) + ", " + num_text(results.back().timing.total_s) + " s\n");
